@@ -4,9 +4,10 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { main } from '../../server/src/cli';
 import { LibraryModule, listLibraries } from '../../server/src/core/library';
-import { entityOffers, newEntityChanges } from '../../server/src/core/libraryEntities';
+import { entityOffers, leftHandRoads, newEntityChanges } from '../../server/src/core/libraryEntities';
 import { guessPlayer, insertModuleGroup, mainShape, moduleRoles } from '../../server/src/core/libraryInsert';
 import { newMainScenario } from '../../server/src/core/newScenario';
+import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { nodeFileSystem } from '../../server/src/core/sources';
 import { builtInLibraryFolder, libraryFolders } from '../../server/src/libraries';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
@@ -270,14 +271,18 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
    * writes it, the ego the example's car and speed 10 m further along its lane, its actors added by Insert into Main; each
    * main checks clean and behaves in esmini as its example. `turned`: the ego on the other side of the road (its lane id
    * negated, on `straight_1000m.xodr` with its sides swapped, so that both have three lanes and a sidewalk), driving
-   * against s, and esmini's tracks turned back half round (x 1000 - x, y -y) for the example's assertions.
+   * against s, and esmini's tracks turned back half round (x 1000 - x, y -y) for the example's assertions. `leftHand`: the
+   * ego on the same road for left-hand traffic (`test/fixtures/library/straight_lht_1000m.xodr`, rule="LHT", its sides
+   * swapped likewise), on the lane of the other side driven along s, and esmini's tracks mirrored back (y -y).
    * What each new entity was told, as Insert into Main says it.
    */
-  async function composedWithAnEgo(turned: boolean): Promise<string[]> {
+  async function composedWithAnEgo(side: 'same' | 'turned' | 'leftHand'): Promise<string[]> {
+    const turned = side === 'turned';
     const placed: string[] = [];
     const composed = path.join(outputs, 'composed');
     fs.mkdirSync(composed, { recursive: true });
     const straight = path.join(libraryFolder ?? '', 'roads', 'straight_1000m.xodr');
+    const leftHandRoad = path.join(repoRoot, 'test', 'fixtures', 'library', 'straight_lht_1000m.xodr');
     const swapped = path.join(composed, 'straight_1000m_swapped.xodr');
     fs.writeFileSync(swapped, swappedSides(fs.readFileSync(straight, 'utf8')));
     // The weather's behaviour is read from a recording, and its only role is the ego.
@@ -291,14 +296,14 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
       if (!egoPosition) continue;
       assert.ok(egoSpeed && egoVehicle && end, `${module.name}: its example's ego has no speed, car or end`);
       const road = path.resolve(path.dirname(module.example ?? ''), /<LogicFile filepath="([^"]+)"/.exec(exampleText)?.[1] ?? '');
-      // Turned round on the straight road only: the on-ramp and the crossroads have no other side to turn to.
-      if (turned && road !== straight) continue;
+      // Turned round or mirrored on the straight road only: the on-ramp and the crossroads have no other side to turn to.
+      if (side !== 'same' && road !== straight) continue;
       const [laneId, s] = [Number(egoPosition[2]), Number(egoPosition[3]) + 10];
       // The ego drives as the example's (its car, its speed, its end), 10 m further along its lane.
       let text = newMainScenario({
         version: '1.1',
-        roadFile: turned ? swapped : road,
-        ego: { roadId: egoPosition[1], laneId: turned ? -laneId : laneId, s: turned ? 1000 - s : s },
+        roadFile: { same: road, turned: swapped, leftHand: leftHandRoad }[side],
+        ego: { roadId: egoPosition[1], laneId: side === 'same' ? laneId : -laneId, s: turned ? 1000 - s : s },
       })
         .replace(/<Vehicle name="car"[\s\S]*?<\/Vehicle>/, egoVehicle)
         .replace('name="EgoSpeed" parameterType="double" value="10"', `name="EgoSpeed" parameterType="double" value="${egoSpeed}"`)
@@ -313,7 +318,16 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
         if (players[role.name] === offer?.name) create[role.name] = offer.name;
       }
       const mainFile = path.join(composed, `${module.name}.xosc`);
-      const entities = newEntityChanges(text, module, exampleText, create, players, { main: mainFile, example: module.example ?? '' });
+      const rules = { main: leftHandRoads(parseOpenDrive(fs.readFileSync(side === 'leftHand' ? leftHandRoad : road, 'utf8'))) };
+      const entities = newEntityChanges(
+        text,
+        module,
+        exampleText,
+        create,
+        players,
+        { main: mainFile, example: module.example ?? '' },
+        rules,
+      );
       placed.push(...entities.added.map((added) => `${module.name}: ${added}`));
       const group = insertModuleGroup(text, module, { players, values: entities.values });
       for (const change of [...entities.changes, { start: group.offset, end: group.offset, text: group.text }].sort(
@@ -328,16 +342,17 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
       const { run } = await runExample({ ...module, example: mainFile }, outputs, esminiBinary);
       const tracks = tracksOf(run);
       tracks.set('ego', tracks.get('Ego') ?? []);
-      if (turned)
+      if (side !== 'same')
         for (const [name, track] of tracks)
           tracks.set(
             name,
-            track.map((point) => ({ time: point.time, x: 1000 - point.x, y: -point.y })),
+            track.map((point) => ({ time: point.time, x: turned ? 1000 - point.x : point.x, y: -point.y })),
           );
       try {
         BEHAVIOURS[module.name](module, tracks, []);
       } catch (error) {
-        throw new Error(`${module.name}${turned ? ', the ego on the other side of the road' : ''}: ${(error as Error).message}`);
+        const where = { same: '', turned: ', the ego on the other side of the road', leftHand: ', on a road of left-hand traffic' }[side];
+        throw new Error(`${module.name}${where}: ${(error as Error).message}`);
       }
     }
     fs.rmSync(composed, { recursive: true, force: true });
@@ -346,15 +361,24 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
 
   it('every module inserted into a main with only an ego (as New Modular Scenario writes it, 10 m further on), its actors added by Insert into Main: clean, and it behaves as in its example in esmini', async function () {
     requireEsmini(this);
-    const placed = await composedWithAnEgo(false);
+    const placed = await composedWithAnEgo('same');
     // Each actor 10 m further on, as its example places it from the ego (those of modules that name no ego where it says).
     assert.ok(placed.filter((added) => / m (ahead of|behind) Ego/.test(added)).length >= 14, placed.join('\n'));
   });
 
   it("the same with the ego on the other side of the road from the example's (a left lane): each placement turned half round, and it behaves as in its example in esmini", async function () {
     requireEsmini(this);
-    const placed = await composedWithAnEgo(true);
+    const placed = await composedWithAnEgo('turned');
     assert.ok(placed.filter((added) => /the example's placement turned round/.test(added)).length >= 12, placed.join('\n'));
+  });
+
+  it('the same on a road of left-hand traffic (rule="LHT"), the ego on its left lane driven along s: each placement mirrored, the sides of lane changes and offsets swapped, and it behaves as in its example in esmini, mirrored', async function () {
+    requireEsmini(this);
+    const placed = await composedWithAnEgo('leftHand');
+    assert.ok(
+      placed.filter((added) => /the example's placement mirrored: road 0 is of left-hand traffic/.test(added)).length >= 12,
+      placed.join('\n'),
+    );
   });
 
   it("every example main's CARLA export builds in ScenarioRunner's loader, and check --simulator carla finds no error in it", async function () {

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { LibraryModule, readModule } from '../../server/src/core/library';
-import { entityOffers, newEntityChanges, TextChange } from '../../server/src/core/libraryEntities';
+import { entityOffers, newEntityChanges, TextChange, TrafficRules } from '../../server/src/core/libraryEntities';
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { parseXml } from '../../server/src/core/xml';
 import { checkCleanAndFlatten } from '../support/cliChecks';
@@ -109,7 +109,7 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
     const cutIn = place('cut-in', 'adversary');
     assert.match(cutIn.text, /<Private entityRef="adversary">[\s\S]*?<LanePosition roadId="0" laneId="2" s="465"/);
     assert.deepEqual(cutIn.added, [
-      "adversary (Vehicle, 35 m ahead of Ego, lane 2 (the example's placement turned round: Ego is on the other side of the road from the example's ego), 7 m/s)",
+      "adversary (Vehicle, 35 m ahead of Ego, lane 2 (the example's placement turned round: Ego drives against the road's s, the example's ego along it), 7 m/s)",
     ]);
     // Across the centre: oncoming-vehicle's car on lane 1 at s 300, 250 m ahead of an ego on lane -1: here on lane -1, at s 250.
     assert.match(
@@ -133,6 +133,78 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
       () => newEntityChanges(onTheLeft.replace('s="500"', 's="20"'), module, example, { lead: 'lead' }, { lead: 'lead', ego: 'Ego' }),
       /'lead' would stand at s -14.5, before the start of road 0 \(34.5 m ahead of Ego as in the example, Ego driving against the road's s on lane 1\): move Ego further from the road's start first/,
     );
+  });
+
+  it('a main road of left-hand traffic: the placement mirrored (lanes on the other side, along s on the positive lanes), and the sides of lane changes and offsets swapped', () => {
+    // Road 0 of the main's road file is rule="LHT": its lane 1 is driven along s, its lane -1 against it.
+    const leftHand = { main: new Set(['0']) };
+    const onLane1 = newMain().replace('laneId="-1"', 'laneId="1"').replace('s="10"', 's="500"');
+    const place = (text: string, name: string, role: string, rules: TrafficRules = leftHand) => {
+      const { module, example } = builtIn(name);
+      const result = newEntityChanges(text, module, example, { [role]: role }, { [role]: role, ego: 'Ego' }, undefined, rules);
+      return { text: applied(text, result.changes), added: result.added, values: result.values };
+    };
+    // cut-in's example: the ego on lane -1 at s 50, the car 35 m ahead on lane -2, on its right (the slower lane). Here the
+    // ego drives along s on lane 1: the car 35 m ahead on lane 2, on its left (the slower lane there), cutting in from it.
+    const cutIn = place(onLane1, 'cut-in', 'adversary');
+    assert.match(cutIn.text, /<Private entityRef="adversary">[\s\S]*?<LanePosition roadId="0" laneId="2" s="535"/);
+    assert.deepEqual(cutIn.added, [
+      "adversary (Vehicle, 35 m ahead of Ego, lane 2 (the example's placement mirrored: road 0 is of left-hand traffic, the example's of right-hand), 7 m/s)",
+    ]);
+    // Unread rules (no road file found): right-hand traffic, OpenDRIVE's default, as before: turned half round.
+    assert.match(place(onLane1, 'cut-in', 'adversary', {}).text, /<LanePosition roadId="0" laneId="2" s="465"/);
+    // The oncoming car on the lane of the other direction: lane -1, driven against s there.
+    assert.match(
+      place(onLane1, 'oncoming-vehicle', 'oncoming').text,
+      /<Private entityRef="oncoming">[\s\S]*?<LanePosition roadId="0" laneId="-1" s="750"/,
+    );
+    // The pedestrian on the sidewalk of the ego's side (lane 4), 0.75 m towards the road, facing the road (its heading
+    // relative to the lane's direction mirrored).
+    assert.match(
+      place(onLane1, 'pedestrian-crossing', 'pedestrian').text,
+      /<Private entityRef="pedestrian">[\s\S]*?<LanePosition roadId="0" laneId="4" s="580" offset="-0.75">\s*<Orientation type="relative" h="-1.571"/,
+    );
+    // The overtaking car passes on the right, towards the centre line, and the lane-changing car moves to the right.
+    assert.deepEqual(place(onLane1, 'overtaking', 'overtaker').values, {
+      'RelativeTargetLane.value': '-1',
+      'AbsoluteTargetSpeed.value': '17',
+    });
+    assert.deepEqual(place(onLane1, 'cut-out', 'lead').values, { 'RelativeTargetLane.value': '1' });
+    // The swerve (1.5 m left of the lane's centre, towards the centre line) goes 1.5 m right along the road's t, still towards it.
+    assert.deepEqual(place(onLane1, 'swerving-lead', 'lead').values, { 'AbsoluteTargetLaneOffset.value': '-1.5' });
+    // On lane -1 of that road the ego drives against s: mirrored and turned, the lanes count as in the example, ahead against s.
+    const onLaneMinus1 = newMain().replace('s="10"', 's="500"');
+    assert.match(
+      place(onLaneMinus1, 'cut-in', 'adversary').text,
+      /<Private entityRef="adversary">[\s\S]*?<LanePosition roadId="0" laneId="-2" s="465"/,
+    );
+    assert.deepEqual(place(onLaneMinus1, 'swerving-lead', 'lead').values, {});
+    assert.deepEqual(place(onLaneMinus1, 'lane-change', 'adversary').values, { 'RelativeTargetLane.value': '-1' });
+    assert.match(
+      place(onLaneMinus1, 'pedestrian-crossing', 'pedestrian').text,
+      /<LanePosition roadId="0" laneId="-4" s="420" offset="0.75">\s*<Orientation type="relative" h="-1.571"/,
+    );
+    // A module whose example is on a road of left-hand traffic (a user's: its ego on lane 1, along s, the car on lane 2, on
+    // its left), inserted into a main of right-hand traffic: mirrored too, the car on the ego's right.
+    const userCutIn = builtIn('cut-in');
+    const leftHandExample = userCutIn.example.replace('laneId="-1"', 'laneId="1"').replace('laneId="-2"', 'laneId="2"');
+    const onRight = newMain();
+    const fromLeftHand = newEntityChanges(
+      onRight,
+      userCutIn.module,
+      leftHandExample,
+      { adversary: 'adversary' },
+      { adversary: 'adversary', ego: 'Ego' },
+      undefined,
+      {
+        example: new Set(['0']),
+      },
+    );
+    assert.match(
+      applied(onRight, fromLeftHand.changes),
+      /<Private entityRef="adversary">[\s\S]*?<LanePosition roadId="0" laneId="-2" s="45"/,
+    );
+    assert.match(fromLeftHand.added[0], /mirrored: road 0 is of right-hand traffic, the example's of left-hand/);
   });
 
   it('a lane across the centre keeps its count from the ego (lane ids skip 0), and a parameter gives the ego its place', () => {

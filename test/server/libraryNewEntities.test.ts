@@ -6,6 +6,7 @@ import { LibraryModule, readModule } from '../../server/src/core/library';
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { builtInLibraryFolder } from '../../server/src/libraries';
 import { checkCleanAndFlatten } from '../support/cliChecks';
+import { repoRoot } from '../support/paths';
 import { requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { BEHAVIOURS } from '../support/libraryBehaviours';
 import { applyEdits } from '../support/textEdits';
@@ -80,8 +81,15 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
     return { text, asked, uri };
   }
 
-  /** The composed main checked clean, run in esmini, and each module's behaviour asserted with the library's own assertions. */
-  async function behavesAsItsExamples(context: Mocha.Context, text: string): Promise<void> {
+  /**
+   * The composed main checked clean, run in esmini, and each module's behaviour asserted with the library's own assertions;
+   * `mirrored`: on a road of left-hand traffic, esmini's tracks mirrored back across the road's reference line (y -y) first.
+   */
+  async function behavesAsItsExamples(
+    context: Mocha.Context,
+    text: string,
+    mirrored = false,
+  ): Promise<Map<string, { time: number; x: number; y: number }[]>> {
     const file = path.join(root, 'main.xosc');
     fs.writeFileSync(file, text);
     await checkCleanAndFlatten(file, path.join(root, 'flat.xosc'));
@@ -89,7 +97,11 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
     const tracks = tracksOf(await runEsmini(path.join(root, 'flat.xosc'), 14));
     // On this main's values and names (its Ego plays `ego`).
     tracks.set('ego', tracks.get('Ego') ?? []);
-    for (const module of MODULES) BEHAVIOURS[module](moduleAsComposed(module, text), tracks, []);
+    const asserted = new Map(
+      [...tracks].map(([name, track]) => [name, mirrored ? track.map((point) => ({ ...point, y: -point.y })) : track]),
+    );
+    for (const module of MODULES) BEHAVIOURS[module](moduleAsComposed(module, text), asserted, []);
+    return tracks;
   }
 
   it('a cut-in, a lead brake and a pedestrian crossing into a main with only an ego: each adds its actor, placed as in its example; clean, and each behaves as in its example in esmini', async function () {
@@ -149,6 +161,41 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
         ),
       );
     await behavesAsItsExamples(this, text);
+  });
+
+  it('a main on a road of left-hand traffic (rule="LHT"): each actor placed as a driver there expects it, mirrored (the cut-in from the left, the pedestrian from the left sidewalk); clean, and each behaves as in its example in esmini, mirrored', async function () {
+    // The library's straight road for left-hand traffic: lanes 1..3 driven along s, a sidewalk beyond (lane 4).
+    const road = path.join(repoRoot, 'test', 'fixtures', 'library', 'straight_lht_1000m.xodr');
+    const onTheLeft = newMain()
+      .replace(/filepath="[^"]*"/, `filepath="${road}"`)
+      .replace('laneId="-1"', 'laneId="1"');
+    const { text } = await compose(onTheLeft);
+    assert.deepEqual(
+      [
+        ...text.matchAll(
+          /<Private entityRef="([^"]+)">[\s\S]*?<LanePosition roadId="0" laneId="(-?\d+)" s="([\d.]+)"(?: offset="([^"]+)")?/g,
+        ),
+      ].map((match) => match.slice(1)),
+      [
+        ['Ego', '1', '10', '0'],
+        // The cut-in's car 35 m ahead in the lane beside the ego's on its left (the slower lane there), where it was on its right.
+        ['adversary', '2', '45', '0'],
+        ['lead', '1', '44.5', '0'],
+        // The pedestrian 80 m ahead on the sidewalk of the ego's side, its left, 0.75 m towards the road, facing the road.
+        ['pedestrian', '4', '90', '-0.75'],
+      ],
+    );
+    assert.match(text, /laneId="4" s="90" offset="-0.75">\s*<Orientation type="relative" h="-1.571" p="0" r="0"\/>/);
+    const tracks = await behavesAsItsExamples(this, text, true);
+    // esmini drives each vehicle along its lane's direction (lanes 1..3 along s there): forwards, left of the reference line.
+    for (const name of ['Ego', 'adversary', 'lead']) {
+      const track = tracks.get(name) ?? [];
+      assert.ok(
+        track.length > 10 && track[0].y > 0 && track[0].y < 10.5,
+        `${name} starts on a lane of the left side: ${JSON.stringify(track[0])}`,
+      );
+      assert.ok(track[track.length - 1].x > track[0].x + 10, `${name} drives along s`);
+    }
   });
 
   it('an ego placed by a WorldPosition (as many real scenarios place it): each actor is placed relative to it by a RelativeLanePosition; clean, and each behaves as in its example in esmini', async function () {

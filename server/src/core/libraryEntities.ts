@@ -7,6 +7,7 @@
 import type { LibraryModule } from './library';
 import { moduleRoles, type ModuleRole } from './libraryInsert';
 import { parseScenario } from './model';
+import type { RoadNetwork } from './opendrive/road';
 import { pathsFor } from './paths';
 import { attribute, attributeValue, escapeAttributeValue, XmlAttribute, XmlElement } from './xml';
 
@@ -63,17 +64,19 @@ function valueOf(element: XmlElement | undefined, name: string): string | undefi
   return element && attributeValue(element, name);
 }
 
+/** A value the main gives, directly or through a parameter its ParameterDeclarations declare. */
+function valueIn(root: XmlElement | undefined, value: string | undefined): string | undefined {
+  if (value === undefined || !value.trim().startsWith('$')) return value?.trim();
+  const name = value.trim().slice(1);
+  const declaration = child(root, 'ParameterDeclarations')?.children.find(
+    (candidate) => candidate.name === 'ParameterDeclaration' && attributeValue(candidate, 'name') === name,
+  );
+  return valueOf(declaration, 'value')?.trim();
+}
+
 /** A number the main gives, directly or through a parameter its ParameterDeclarations declare. */
 function numberIn(root: XmlElement | undefined, value: string | undefined): number | undefined {
-  if (value === undefined) return undefined;
-  let literal = value.trim();
-  if (literal.startsWith('$')) {
-    const name = literal.slice(1);
-    const declaration = child(root, 'ParameterDeclarations')?.children.find(
-      (candidate) => candidate.name === 'ParameterDeclaration' && attributeValue(candidate, 'name') === name,
-    );
-    literal = valueOf(declaration, 'value')?.trim() ?? '';
-  }
+  const literal = valueIn(root, value) ?? '';
   if (literal === '' || !/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(literal)) return undefined;
   return Number(literal);
 }
@@ -96,6 +99,23 @@ function placementOf(element: XmlElement | undefined): Placement {
 
 /** Keys of an offset from a lane's centre line that esmini takes along the road's t, not the entity's left (swerving-lead's, arrive-leave-site's, oncoming-vehicle's). */
 const LATERAL_OFFSET_KEY = /(^|\.)(AbsoluteTargetLaneOffset\.value|LaneChangeAction\.targetLaneOffset|targetLaneOffset)$/;
+
+/** Keys of a lane change's side, counted from the heading of the entity they name (+1 its left): swapped on a road of the other traffic rule. */
+const SIDE_KEY = /(^|\.)RelativeTargetLane\.value$/;
+
+/** The ids of a road network's roads of left-hand traffic (`rule="LHT"`, OpenDRIVE 1.5; right-hand traffic when it is not given). */
+export function leftHandRoads(network: RoadNetwork): Set<string> {
+  return new Set(network.roads.filter((road) => road.leftHandTraffic).map((road) => road.id));
+}
+
+/** The roads of the main's and of the example's road file that are of left-hand traffic (none known: right-hand, OpenDRIVE's default). */
+export interface TrafficRules {
+  main?: ReadonlySet<string>;
+  example?: ReadonlySet<string>;
+}
+
+/** +1 where a lane is driven along s (right-hand traffic: the negative lanes; left-hand: the positive ones), -1 against it. */
+const drivingSense = (laneId: number, leftHand: boolean) => ((leftHand ? laneId > 0 : laneId < 0) ? 1 : -1);
 
 /** Lane ids skip 0: as a count from the centre (…, -2, -1 | 0, 1, …), a lane further right is one less. */
 const laneIndex = (laneId: number) => (laneId > 0 ? laneId - 1 : laneId);
@@ -172,8 +192,8 @@ export interface NewEntities {
  * ScenarioObject and Init Private. Where the example places the role's entity and a reference role (the first other
  * role the main already has a player for, `ego`) by LanePositions on one road, and the main places that player by a
  * LanePosition on a lane of the same side, the new entity keeps the example's lane difference and distance along the
- * road to it (turned half round where that player is on the other side of the road from the example's: lanes counted
- * the other way, ahead against s), and its speed keeps the example's difference to the reference's (a standing entity stays standing);
+ * road to it (turned half round where that player drives against s as the example's does not: ahead against s; mirrored
+ * where the main's road is of the other traffic rule than the example's (`rules`): lanes and sides swapped), and its speed keeps the example's difference to the reference's (a standing entity stays standing);
  * a speed key whose default is that speed moves with it. Else the example's placement is written as it is.
  * Throws with what to do where the main cannot take the entity.
  */
@@ -184,6 +204,7 @@ export function newEntityChanges(
   create: Readonly<Record<string, string>>,
   players: Readonly<Record<string, string>>,
   files?: { main: string; example: string },
+  rules?: TrafficRules,
 ): NewEntities {
   const result: NewEntities = { changes: [], values: {}, added: [] };
   const roles = moduleRoles(module).filter((role) => create[role.name] !== undefined);
@@ -291,12 +312,20 @@ export function newEntityChanges(
           });
           where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, ${dLane === 0 ? 'in its lane' : `${Math.abs(dLane)} lane${Math.abs(dLane) > 1 ? 's' : ''} ${dLane < 0 ? 'right' : 'left'} of it`} (RelativeLanePosition)`;
         } else {
-          // On the other side of the road the ego drives against s: the example's placement turned half round (lanes
-          // counted the other way across the centre line, ahead against s, the offset from the lane's centre negated) keeps right and left, as esmini reads the
-          // modules' lane changes and offsets relative to the entity's heading (OSCPrivateAction.cpp:895, 1087).
-          const turned = Math.sign(mainLane) !== Math.sign(refLane);
-          const along = turned ? -1 : 1;
-          const laneId = laneOfIndex(laneIndex(mainLane) + along * dLane);
+          // The example's placement as its ego's driver sees it (ahead, to the left), turned half round where the main's ego
+          // drives against s as the example's does not, and mirrored where one road is of left-hand traffic and the other
+          // not (a driver there expects the other lanes, the overtaking and cutting in, on the other side): esmini drives a
+          // lane by its side and the road's rule (RoadManager.cpp:11158) and reads lane changes and offsets relative to the
+          // entity's heading (OSCPrivateAction.cpp:895, 1087), a LanePosition's offset along the road's t (RoadManager.cpp:9746).
+          const mainLeftHand = rules?.main?.has(valueIn(root, mainRoad) ?? '') ?? false;
+          const exampleLeftHand =
+            rules?.example?.has(valueIn(exampleRoot, valueOf(exampleReference.lanePosition, 'roadId')) ?? '') ?? false;
+          const mirrored = mainLeftHand !== exampleLeftHand;
+          const along = drivingSense(mainLane, mainLeftHand) * drivingSense(refLane, exampleLeftHand);
+          const turned = along < 0;
+          // Across the road (its t): turned half round, t runs the other way; mirrored, too.
+          const lateral = mirrored ? -along : along;
+          const laneId = laneOfIndex(laneIndex(mainLane) + lateral * dLane);
           const s = mainS + along * distance;
           if (s < 0)
             throw new Error(
@@ -308,19 +337,34 @@ export function newEntityChanges(
           if (roadAttribute) replacements.push({ attribute: roadAttribute, value: mainRoad });
           if (laneAttribute) replacements.push({ attribute: laneAttribute, value: String(laneId) });
           if (sAttribute) replacements.push({ attribute: sAttribute, value: rounded(s) });
-          // esmini adds a LanePosition's offset along the road's t, whatever the lane's side (RoadManager.cpp:9746 Lane2Track).
           const offsetAttribute = attribute(own.lanePosition, 'offset');
           const offset = numberIn(exampleRoot, offsetAttribute?.value);
-          if (turned && offsetAttribute && offset !== undefined && offset !== 0)
+          if (lateral < 0 && offsetAttribute && offset !== undefined && offset !== 0)
             replacements.push({ attribute: offsetAttribute, value: rounded(-offset) });
-          // So does it an absolute lane offset an action moves to (OSCPrivateAction.cpp:1078, 920): such a key's default is negated.
-          if (turned && role.actor)
+          // A heading relative to the lane's driving direction (a pedestrian facing the road) mirrored: its left is the other's right.
+          const orientation = child(own.lanePosition, 'Orientation');
+          const heading = orientation && attribute(orientation, 'h');
+          const headingValue = numberIn(exampleRoot, heading?.value);
+          if (mirrored && heading && headingValue !== undefined && headingValue !== 0 && valueOf(orientation, 'type') === 'relative')
+            replacements.push({ attribute: heading, value: rounded(-headingValue) });
+          // An absolute lane offset an action moves to, taken along t as well (OSCPrivateAction.cpp:1078, 920), and a lane
+          // change's side (counted from the heading): their defaults turned and mirrored with the placement.
+          if (role.actor)
             for (const parameter of module.parameters) {
-              const lateral = numberIn(undefined, parameter.defaultValue);
-              if (LATERAL_OFFSET_KEY.test(parameter.key) && lateral !== undefined && lateral !== 0)
-                result.values[parameter.key] = rounded(-lateral);
+              const value = numberIn(undefined, parameter.defaultValue);
+              if (value === undefined || value === 0) continue;
+              if ((LATERAL_OFFSET_KEY.test(parameter.key) && lateral < 0) || (SIDE_KEY.test(parameter.key) && mirrored))
+                result.values[parameter.key] = rounded(-value);
             }
-          where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, lane ${laneId}${turned ? ` (the example's placement turned round: ${player} is on the other side of the road from the example's ${reference.name})` : ''}`;
+          const how = [
+            ...(turned ? [`turned round: ${player} drives against the road's s, the example's ${reference.name} along it`] : []),
+            ...(mirrored
+              ? [
+                  `mirrored: road ${mainRoad} is of ${mainLeftHand ? 'left' : 'right'}-hand traffic, the example's of ${exampleLeftHand ? 'left' : 'right'}-hand`,
+                ]
+              : []),
+          ];
+          where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, lane ${laneId}${how.length > 0 ? ` (the example's placement ${how.join(', and ')})` : ''}`;
         }
       }
       const speedAttribute = own.speedTarget && attribute(own.speedTarget, 'value');

@@ -11,7 +11,14 @@ import {
 } from '../../../common/src/libraryProtocol';
 import { decodeScenario } from '../core/encoding';
 import { findModule, LibraryModule, listLibraries } from '../core/library';
-import { entityOffers, newEntityChanges } from '../core/libraryEntities';
+import { entityOffers, leftHandRoads, newEntityChanges, TrafficRules } from '../core/libraryEntities';
+import { parseScenario } from '../core/model';
+import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../core/opendrive/road';
+import { Evaluator } from '../core/semantics/evaluator';
+import { semanticModelOf } from '../core/semantics/model';
+import { locateRoadFile, readFoundRoad } from '../core/semantics/roadFiles';
+import { diskRef, nodeFileSystem, SourceRef } from '../core/sources';
+import { decodeUtf8 } from '../core/text';
 import { entityKinds, freeEntities, guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
 import { LineIndex } from '../core/text';
 import { listTemplates, templateOutputs } from '../libraries';
@@ -113,6 +120,14 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   let entities;
   try {
     const mainFile = filePathOf(params.uri);
+    // A new entity is placed as a driver of the main's road expects it: its traffic rule against the example's.
+    const rules: TrafficRules =
+      create.length > 0 && module.example
+        ? {
+            main: await leftHandRoadsOf(workspace, ref, text),
+            example: await leftHandRoadsOf(workspace, diskRef(module.example), exampleText),
+          }
+        : {};
     entities = newEntityChanges(
       text,
       module,
@@ -120,6 +135,7 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
       Object.fromEntries(create.map((role) => [role, players[role]])),
       players,
       mainFile && module.example ? { main: mainFile, example: module.example } : undefined,
+      rules,
     );
     const at = position ? lines.offsetAt(position) : undefined;
     inserted = insertModuleGroup(text, module, { act: params.act, at, players, values: entities.values });
@@ -141,6 +157,19 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
     .reduce((sum, change) => sum + lineCount(change.text) - lineCount(text.slice(change.start, change.end)), 0);
   const line = at.line + (inserted.text.startsWith('\n') ? 1 : 0) + added;
   return { ...result, edit, groupName: inserted.groupName, line, ...(entities.added.length > 0 ? { added: entities.added } : {}) };
+}
+
+/**
+ * The ids of the roads of left-hand traffic in a scenario's road file, found as a run finds it; undefined where it names
+ * none, or it is not found or cannot be read (its placement then is that of right-hand traffic, OpenDRIVE's default).
+ */
+async function leftHandRoadsOf(workspace: Workspace, ref: SourceRef, text: string): Promise<Set<string> | undefined> {
+  const document = parseScenario(text).document;
+  const road = await locateRoadFile(workspace.store, ref, document, new Evaluator(semanticModelOf(document)), [], nodeFileSystem);
+  if (!road?.resolved && !road?.packaged) return undefined;
+  const bytes = await readFoundRoad(workspace.store, road, MAX_ROAD_FILE_BYTES, nodeFileSystem).catch(() => undefined);
+  if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
+  return leftHandRoads(parseOpenDrive(decodeUtf8(bytes)));
 }
 
 function lineCount(text: string): number {
