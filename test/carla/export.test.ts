@@ -1348,17 +1348,98 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
     await assertMovesAlike(original, result.output, 20, 0.21);
   });
 
-  it("a pedestrian whose lane turns away from the way it faces, or that passes a junction, before its route starts: refused at the action's line, naming why (ScenarioRunner walks it straight ahead) (issue 26)", async () => {
-    // Turned 0.3 rad from its road: esmini moves it along the road, ScenarioRunner straight ahead, 1.5 m apart after 5 m.
-    const text = walkerScenario(2.84);
-    const refused = await refusedExport(path.join(out, 'turned.xosc'), text);
+  /** `text` exported and refused once, at the walker's AcquirePositionAction (the last): what ScenarioRunner would do, as the refusal says. */
+  async function walkerRouteRefusal(original: string, text: string): Promise<string> {
+    const refused = await refusedExport(original, text);
     const refusals = refused.report.losses.filter((loss) => loss.kind === 'refused');
     assert.deepEqual(
       refusals.map((loss) => [loss.element, loss.line]),
       [['AcquirePositionAction', text.slice(0, text.lastIndexOf('<AcquirePositionAction>')).split('\n').length]],
     );
+    return refusals[0].carla;
+  }
+
+  /** The walker scenario with one more Event in the walker's Maneuver: a step SpeedAction to `speed` started by `condition`. */
+  const walkerChangingSpeed = (speed: number, condition: string): string => {
+    const text = walkerScenario();
+    const changes = `
+            <Event name="WalkerChangesSpeed" priority="parallel">
+              <Action name="WalkerSpeedChange"><PrivateAction>${speedChange('step', 0, 'time', speed)}</PrivateAction></Action>
+              <StartTrigger><ConditionGroup><Condition name="WalkerSpeedChangeStarts" delay="0" conditionEdge="none">
+                ${condition}
+              </Condition></ConditionGroup></StartTrigger>
+            </Event>
+          </Maneuver>`;
+    const at = text.indexOf('</Maneuver>', text.indexOf('name="WalkerRoute"'));
+    return text.slice(0, at) + changes + text.slice(at + '</Maneuver>'.length);
+  };
+  const walkerTraveled = (metres: number): string => `<ByEntityCondition>
+                  <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Walker"/></TriggeringEntities>
+                  <EntityCondition><TraveledDistanceCondition value="${metres}"/></EntityCondition>
+                </ByEntityCondition>`;
+
+  for (const [when, condition] of [
+    ['its own TraveledDistanceCondition past where the route starts', walkerTraveled(15)],
+    [
+      "the route Event's start (a StoryboardElementStateCondition, 4 s delay)",
+      '<ByValueCondition><StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="WalkerRoute" state="startTransition"/></ByValueCondition>',
+    ],
+  ] as const)
+    it(`a pedestrian whose speed changes once its story route has started (${when}): written, its walker walks the trajectory at the new speed in both simulators; ScenarioRunner builds it, esmini runs it as the original (within one step's travel) (issue 26)`, async function () {
+      requireEsmini(this);
+      requireCarlaHarness(this);
+      const original = path.join(out, 'walker.xosc');
+      let text = walkerChangingSpeed(3.5, condition);
+      if (condition.includes('Storyboard'))
+        text = text.replace('name="WalkerSpeedChangeStarts" delay="0"', 'name="WalkerSpeedChangeStarts" delay="4"');
+      fs.writeFileSync(original, text);
+      const result = await exportFile(original, path.join(out, 'exported.xosc'));
+      assert.equal(result.code, 0, result.stderr);
+      const walked = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction')[1];
+      assert.equal(walked?.kind, 'approximated', JSON.stringify(result.report.losses));
+      assert.match(
+        walked.what,
+        new RegExp(
+          `ScenarioRunner walks it to each vertex at the speed its story set, 2 m/s, then at the speed the SpeedAction at walker\\.xosc:${lineHolding(text, 'name="WalkerSpeedChange"')} sets once the route has started, as esmini walks it \\(.*atomic_behaviors\\.py:516, 542, 857, 882-886.*pedestrian_control\\.py:57-70\\)`,
+        ),
+      );
+      const verdict = await assertBuilt(result.output, { tree: true });
+      assert.deepEqual((verdict.waypoints ?? []).map(([, name]) => name).sort(), ['HeroAcquires', 'WalkerAcquires']);
+      // The walker at 3.5 m/s from its 15th metre or 4 s into its route: one step's travel of the hero, as before, bounds both.
+      const tracks = await assertMovesAlike(original, result.output, 20, 0.21);
+      // It did walk faster: more than the 40 m that 20 s at 2 m/s would take it.
+      const walker = tracks.get('Walker') ?? [];
+      let walkedMetres = 0;
+      for (let index = 1; index < walker.length; index++)
+        walkedMetres += Math.hypot(walker[index].x - walker[index - 1].x, walker[index].y - walker[index - 1].y);
+      assert.ok(walkedMetres > 50, `the walker walked ${walkedMetres.toFixed(1)} m`);
+    });
+
+  it("a pedestrian whose speed may change before its story route starts: refused at the action's line, naming why (issue 26)", async () => {
+    const refusal = await walkerRouteRefusal(path.join(out, 'early.xosc'), walkerChangingSpeed(3.5, walkerTraveled(3)));
     assert.match(
-      refusals[0].carla,
+      refusal,
+      /the speed of 'Walker' until the action starts is not certain .*so where it is then is not known; a walker's SpeedAction to an absolute speed that starts only once its route has .* is kept: both simulators walk the trajectory at the speed it sets \(.*pedestrian_control\.py:57-70\)/,
+    );
+    // At 6 m, past the route's 5 m but before the 7 m its 1 s delay at 2 m/s makes: the SpeedAction named.
+    const delayed = walkerChangingSpeed(3.5, walkerTraveled(6)).replace(
+      'name="WalkerRouteStarts" delay="0"',
+      'name="WalkerRouteStarts" delay="1"',
+    );
+    const refusedDelayed = await refusedExport(path.join(out, 'delayed.xosc'), delayed);
+    assert.match(
+      refusedDelayed.report.losses.find((loss) => loss.kind === 'refused')?.carla ?? '',
+      new RegExp(
+        `a SpeedAction of 'Walker' \\(delayed\\.xosc:${lineHolding(delayed, 'name="WalkerSpeedChange"')}\\) may start before its route does \\(its distance lies before the 7 m at which the route starts\\)`,
+      ),
+    );
+  });
+
+  it("a pedestrian whose lane turns away from the way it faces, or that passes a junction, before its route starts: refused at the action's line, naming why (ScenarioRunner walks it straight ahead) (issue 26)", async () => {
+    // Turned 0.3 rad from its road: esmini moves it along the road, ScenarioRunner straight ahead, 1.5 m apart after 5 m.
+    const refusal = await walkerRouteRefusal(path.join(out, 'turned.xosc'), walkerScenario(2.84));
+    assert.match(
+      refusal,
       /'Walker' is a pedestrian, which ScenarioRunner walks straight ahead until the action starts \(.*pedestrian_control\.py.*\), and esmini along its lane, which leaves that line by 1\.\d+ m by then, more than the 1 m ScenarioRunner's walker takes as reaching a vertex/,
     );
   });

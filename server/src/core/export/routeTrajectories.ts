@@ -192,7 +192,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
         return `its story moves '${actor}' too (${withArticle(moving.children[0]?.name ?? moving.name)} at ${lineOf(moving) || 'a story line'}), which would end the trajectory in ScenarioRunner and fight it in esmini`;
       }
     }
-  const starts = inInit ? initRouteStart(tree, actor, action) : storyRouteStart(tree, action, actor);
+  const starts = inInit ? initRouteStart(tree, actor, action) : storyRouteStart(tree, action, actor, walker);
   if (typeof starts === 'string') return starts;
   const { speed, along } = starts;
   if (!(speed > 0)) return `'${actor}' keeps the speed ${speed}, and a trajectory at that speed has no times`;
@@ -268,11 +268,16 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   const from = inInit
     ? `from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(start.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`
     : `from where '${actor}' is expected when the action starts, ${starts.how} (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(first.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`;
+  const later = starts.later ?? [];
+  const changes =
+    later.length > 0
+      ? `, then at the speed ${later.length === 1 ? 'the SpeedAction' : 'the SpeedActions'} at ${later.map((each) => lineOf(each) || 'a story line').join(', ')} ${later.length === 1 ? 'sets' : 'set'} once the route has started, as esmini walks it (${CARLA_FACTS.walkerSpeedChangeOnTrajectory.source})`
+      : '';
   if (walker)
     return {
       follow,
       walker,
-      summary: `the lanes esmini moves it in ${from.replace('along its lane', 'straight ahead')}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, each at its offset ${fourDecimals(start.offset)} m from the centre of the driving lane esmini places it by (it walks off the driving lanes), timed at its speed ${fourDecimals(speed)} m/s for esmini; ScenarioRunner walks it to each vertex at the speed its story set, ${fourDecimals(speed)} m/s, whatever the times${
+      summary: `the lanes esmini moves it in ${from.replace('along its lane', 'straight ahead')}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, each at its offset ${fourDecimals(start.offset)} m from the centre of the driving lane esmini places it by (it walks off the driving lanes), timed at its speed ${fourDecimals(speed)} m/s for esmini; ScenarioRunner walks it to each vertex at the speed its story set, ${fourDecimals(speed)} m/s${changes}, whatever the times${
         along > 0
           ? `, from where it is when the action starts: it walks straight ahead until then, where esmini moves it along its lane, ${Number(expected.strayed.toFixed(2))} m off that line at most (ScenarioRunner takes a vertex within 1 m as reached)`
           : ''
@@ -399,8 +404,16 @@ function fromWhereExpected(
   return `'${actor}' is expected ${Number(along.toFixed(2))} m along its lane from its start when the action starts, past its route's end (${Number(covered.toFixed(2))} m)`;
 }
 
+/** Where a route action finds its actor (a distance along its lane from its start), its speed then, and a walker's SpeedActions that start only after it. */
+interface RouteStart {
+  speed: number;
+  along: number;
+  how: string;
+  later?: Node[];
+}
+
 /** An Init route starts where the actor starts, at the speed it keeps over the whole run. */
-function initRouteStart(tree: Node, actor: string, action: Node): { speed: number; along: number; how: string } | string {
+function initRouteStart(tree: Node, actor: string, action: Node): RouteStart | string {
   const speed = constantSpeedOf(tree, actor, action);
   if (speed === undefined)
     return `the speed of '${actor}' is not certain over the route (none set at once in the Init, a controller of its own, or an action of its story changes it), and ScenarioRunner would drive to the vertices by times computed at one speed`;
@@ -430,7 +443,106 @@ function startsAtZero(act: Node): boolean {
  * at the run's start), or a SimulationTimeCondition at a speed kept from the Init, in an Act that starts at the run's start:
  * ScenarioRunner counts both from when the condition is first ticked (CARLA_FACTS.conditionsCountFromTheirStart), esmini from the run's.
  */
-function storyRouteStart(tree: Node, action: Node, actor: string): { speed: number; along: number; how: string } | string {
+function storyRouteStart(tree: Node, action: Node, actor: string, walker: boolean): RouteStart | string {
+  if (!walker) return storyRouteStartAt(tree, action, actor, new Set([action]), false);
+  // A walker walks the trajectory at whatever speed it has (both simulators): SpeedActions that start only once the route has are left out.
+  const event = ancestor(action, 'Event');
+  const route = { action, event, act: ancestor(action, 'Act'), actor };
+  const routeTime = routeStartTime(action);
+  // First with the least distance the route can start at; then checked at the distance the speed gives.
+  const first = laterSpeedActions(tree, route, { along: routeTraveled(action) ?? 0, time: routeTime });
+  const starts = storyRouteStartAt(tree, action, actor, new Set([action, ...first]), true);
+  if (typeof starts === 'string' || first.length === 0) return starts;
+  const later = laterSpeedActions(tree, route, { along: starts.along, time: routeTime });
+  if (later.length !== first.length)
+    return `a SpeedAction of '${actor}' (${first
+      .filter((each) => !later.includes(each))
+      .map((each) => lineOf(each) || 'a story line')
+      .join(
+        ', ',
+      )}) may start before its route does (its distance lies before the ${Number(starts.along.toFixed(3))} m at which the route starts), so where '${actor}' is when the action starts is not certain`;
+  return { ...starts, later };
+}
+
+/** What a walker's refusal for its speed adds: the speed changes it walks in both simulators. */
+const WALKER_LATER = `a walker's SpeedAction to an absolute speed that starts only once its route has (on the route's Action or Event state, or in the route's Act on its own TraveledDistanceCondition at or past where the route starts, or a SimulationTimeCondition at or after a time-started route's start) is kept: both simulators walk the trajectory at the speed it sets (${CARLA_FACTS.walkerSpeedChangeOnTrajectory.source})`;
+
+/** The states a storyboard element reaches only once it has started. */
+const STARTED_STATES: ReadonlySet<string> = new Set(['startTransition', 'runningState', 'endTransition', 'completeState']);
+
+/** The distance of the route Event's one TraveledDistanceCondition, if it starts on one. */
+function routeTraveled(action: Node): number | undefined {
+  const event = ancestor(action, 'Event');
+  const trigger = event ? child(event, 'StartTrigger') : undefined;
+  const traveled = trigger ? named(trigger, 'TraveledDistanceCondition') : [];
+  return traveled.length === 1 ? numberAttr(traveled[0], 'value', NaN) : undefined;
+}
+
+/** When the route Event starts, from its Act's start, if it starts on one SimulationTimeCondition. */
+function routeStartTime(action: Node): number | undefined {
+  const event = ancestor(action, 'Event');
+  const trigger = event ? child(event, 'StartTrigger') : undefined;
+  const conditions = trigger ? named(trigger, 'Condition') : [];
+  const time = conditions.length === 1 ? named(conditions[0], 'SimulationTimeCondition')[0] : undefined;
+  return time && FROM_TIME_ON.has(attr(time, 'rule') ?? '')
+    ? numberAttr(time, 'value', NaN) + numberAttr(conditions[0], 'delay', 0)
+    : undefined;
+}
+
+/**
+ * The walker's story SpeedActions (to an absolute speed, not negative: its controller raises on a negative one,
+ * pedestrian_control.py:60-62) whose Event starts only once the route action has: in each of its condition groups, a
+ * condition that the route's Action or Event has started, or, in the route's Act (so counted from the same first tick in
+ * ScenarioRunner, CARLA_FACTS.conditionsCountFromTheirStart), the walker's own TraveledDistanceCondition at the distance the
+ * route starts at or beyond, or a SimulationTimeCondition at the route's start time or later.
+ */
+function laterSpeedActions(
+  tree: Node,
+  route: { action: Node; event: Node | undefined; act: Node | undefined; actor: string },
+  from: { along: number; time: number | undefined },
+): Node[] {
+  const routeAction = ancestor(route.action, 'Action');
+  const startedLater = (condition: Node, act: Node | undefined): boolean => {
+    if (!(numberAttr(condition, 'delay', 0) >= 0)) return false;
+    const state = named(condition, 'StoryboardElementStateCondition')[0];
+    if (state) {
+      const ref = attr(state, 'storyboardElementRef');
+      const type = attr(state, 'storyboardElementType');
+      const element = type === 'action' ? routeAction : type === 'event' ? route.event : undefined;
+      return element !== undefined && ref === attr(element, 'name') && STARTED_STATES.has(attr(state, 'state') ?? '');
+    }
+    if (act !== route.act) return false;
+    const traveled = named(condition, 'TraveledDistanceCondition')[0];
+    if (traveled) {
+      const triggering = named(condition, 'EntityRef').map((each) => attr(each, 'entityRef'));
+      return triggering.length === 1 && triggering[0] === route.actor && numberAttr(traveled, 'value', NaN) >= from.along - 1e-9;
+    }
+    const time = named(condition, 'SimulationTimeCondition')[0];
+    return (
+      time !== undefined &&
+      from.time !== undefined &&
+      FROM_TIME_ON.has(attr(time, 'rule') ?? '') &&
+      numberAttr(time, 'value', NaN) >= from.time - 1e-9
+    );
+  };
+  const found: Node[] = [];
+  for (const story of named(tree, 'Story'))
+    for (const speed of named(story, 'SpeedAction')) {
+      const event = ancestor(speed, 'Event');
+      if (!event || event === route.event || !mayActOn(speed, route.actor)) continue;
+      const absolute = named(speed, 'AbsoluteTargetSpeed')[0];
+      if (!absolute || !(numberAttr(absolute, 'value', NaN) >= 0)) continue;
+      const trigger = child(event, 'StartTrigger');
+      const groups = trigger ? childrenNamed(trigger, 'ConditionGroup') : [];
+      const act = ancestor(event, 'Act');
+      if (groups.length > 0 && groups.every((group) => childrenNamed(group, 'Condition').some((each) => startedLater(each, act))))
+        found.push(speed);
+    }
+  return found;
+}
+
+/** storyRouteStart for the actor's speed without the actions `except` holds (the route action, a walker's later speeds). */
+function storyRouteStartAt(tree: Node, action: Node, actor: string, except: ReadonlySet<Node>, walker: boolean): RouteStart | string {
   const event = ancestor(action, 'Event');
   const act = ancestor(action, 'Act');
   const trigger = event ? child(event, 'StartTrigger') : undefined;
@@ -444,7 +556,7 @@ function storyRouteStart(tree: Node, action: Node, actor: string): { speed: numb
   if (!Number.isFinite(delay) || delay < 0) return `its start condition's delay is not a number of seconds: ${unknown}`;
   const counted = CARLA_FACTS.conditionsCountFromTheirStart;
   const fromItsStart = `ScenarioRunner ${counted.does} (${counted.source}), esmini from the run's start, and its Act starts later or on another condition`;
-  const kept = constantSpeedOf(tree, actor, action);
+  const kept = constantSpeedOf(tree, actor, except);
   if (kind === 'TraveledDistanceCondition') {
     const traveled = named(condition, kind)[0];
     const triggering = named(condition, 'EntityRef').map((each) => attr(each, 'entityRef') ?? '');
@@ -452,10 +564,12 @@ function storyRouteStart(tree: Node, action: Node, actor: string): { speed: numb
       return `its Event starts when ${triggering.join(', ') || 'no entity'} has traveled a distance, not '${actor}' alone: ${unknown}`;
     const distance = numberAttr(traveled, 'value', NaN);
     if (!(distance >= 0)) return `its TraveledDistanceCondition's value is not a distance: ${unknown}`;
-    const story = kept === undefined ? storySpeedOf(tree, actor, action) : undefined;
+    const story = kept === undefined ? storySpeedOf(tree, actor, except) : undefined;
     const speed = kept ?? (story && ancestor(story.action, 'Act') === act ? story.speed : undefined);
     if (speed === undefined)
-      return `the speed of '${actor}' is not certain from the action's start (neither kept from the Init nor set once by a step SpeedAction of the same Act with the actor standing until then), and ScenarioRunner would drive to the vertices by times computed at one speed`;
+      return walker
+        ? `the speed of '${actor}' until the action starts is not certain (neither kept from the Init nor set once by a step SpeedAction of the same Act with the actor standing until then), so where it is then is not known; ${WALKER_LATER}`
+        : `the speed of '${actor}' is not certain from the action's start (neither kept from the Init nor set once by a step SpeedAction of the same Act with the actor standing until then), and ScenarioRunner would drive to the vertices by times computed at one speed`;
     if (kept !== undefined && !startsAtZero(act)) return `'${actor}' drives from the run's start and ${fromItsStart}: ${unknown}`;
     const along = distance + speed * delay;
     return {
@@ -470,7 +584,7 @@ function storyRouteStart(tree: Node, action: Node, actor: string): { speed: numb
     if (!FROM_TIME_ON.has(attr(time, 'rule') ?? '') || !(seconds >= 0))
       return `its SimulationTimeCondition does not name a time from which on it holds: ${unknown}`;
     if (kept === undefined)
-      return `the speed of '${actor}' is not certain from the run's start to the action's (none set at once in the Init, a controller of its own, or an action of its story changes it): ${unknown}`;
+      return `the speed of '${actor}' is not certain from the run's start to the action's (none set at once in the Init, a controller of its own, or an action of its story changes it): ${unknown}${walker ? `; ${WALKER_LATER}` : ''}`;
     if (!startsAtZero(act)) return `${fromItsStart}: ${unknown}`;
     const along = kept * (seconds + delay);
     return {

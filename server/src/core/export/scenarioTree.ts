@@ -64,11 +64,23 @@ const SPEED_CHANGING: ReadonlySet<string> = new Set([
   'OverrideControllerValueAction',
 ]);
 
+/** Actions a speed question leaves out: one (the action asking), or several (also those known to start only after it). */
+export type Excepted = Node | ReadonlySet<Node>;
+
+function isExcepted(action: Node, except: Excepted | undefined): boolean {
+  return except instanceof Set ? except.has(action) : action === except;
+}
+
 /**
  * The speed the actor keeps for the whole run, when that is certain: its Init sets it at once (a step) and nothing
  * else can change it (no controller of its own, no other speed-changing action on it but `except`), else undefined.
  */
-export function constantSpeedOf(tree: Node, actor: string, except?: Node, through: ReadonlySet<string> = new Set()): number | undefined {
+export function constantSpeedOf(
+  tree: Node,
+  actor: string,
+  except?: Excepted,
+  through: ReadonlySet<string> = new Set(),
+): number | undefined {
   const storyboard = child(tree, 'Storyboard');
   const init = storyboard ? child(storyboard, 'Init') : undefined;
   if (!storyboard || !init) return undefined;
@@ -86,7 +98,7 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node, throug
   if (speed === undefined || !Number.isFinite(speed)) return undefined;
   for (const story of childrenNamed(storyboard, 'Story'))
     for (const action of named(story, SPEED_CHANGING)) {
-      if (action === except || !changesSpeed(action)) continue;
+      if (isExcepted(action, except) || !changesSpeed(action)) continue;
       if (mayActOn(action, actor)) return undefined;
     }
   return speed;
@@ -96,7 +108,7 @@ export function constantSpeedOf(tree: Node, actor: string, except?: Node, throug
  * The one speed the story gives an actor that stands until then: no speed-changing action in its Init, no controller of its
  * own, and of its story's speed-changing actions (but `except`) only one, a step SpeedAction to an absolute speed; else undefined.
  */
-export function storySpeedOf(tree: Node, actor: string, except?: Node): { speed: number; action: Node } | undefined {
+export function storySpeedOf(tree: Node, actor: string, except?: Excepted): { speed: number; action: Node } | undefined {
   const storyboard = child(tree, 'Storyboard');
   const init = storyboard ? child(storyboard, 'Init') : undefined;
   const object = scenarioObjectOf(tree, actor);
@@ -106,7 +118,7 @@ export function storySpeedOf(tree: Node, actor: string, except?: Node): { speed:
   const found: Node[] = [];
   for (const story of childrenNamed(storyboard, 'Story'))
     for (const action of named(story, SPEED_CHANGING)) {
-      if (action === except || !changesSpeed(action)) continue;
+      if (isExcepted(action, except) || !changesSpeed(action)) continue;
       if (mayActOn(action, actor)) found.push(action);
     }
   const [action] = found;

@@ -322,6 +322,11 @@ export const CARLA_FACTS = {
       'srunner/scenariomanager/actorcontrols/pedestrian_control.py:41-77, srunner/scenariomanager/actorcontrols/actor_control.py:69-70',
     severity: 'warning',
   },
+  walkerSpeedChangeOnTrajectory: {
+    does: "keeps a pedestrian on its trajectory when a SpeedAction changes its speed: the SpeedAction only sets its controller's target speed (a longitudinal command, ChangeActorTargetSpeed), which ends no running ChangeActorWaypoints (that ends at its last vertex or at another waypoint command), and the walker controller walks towards its next vertex at the target speed it holds at each tick",
+    source: `${ATOMICS}:516, 542, 857, 882-886 (ChangeActorTargetSpeed, ChangeActorWaypoints), srunner/scenariomanager/actorcontrols/actor_control.py:97-119, srunner/scenariomanager/actorcontrols/pedestrian_control.py:57-70`,
+    severity: 'warning',
+  },
   conditionsCountFromTheirStart: {
     does: "counts a SimulationTimeCondition's time and a TraveledDistanceCondition's distance from when the condition is first ticked (its Act has started), not from the run's start",
     source: `srunner/scenariomanager/timer.py:108-126 (SimulationTimeCondition.initialise, update), ${SR_TRIGGER_CONDITIONS}:1211-1228 (DriveDistance.initialise, update), ${PARSER}:1029-1032, 1124-1128`,
