@@ -186,6 +186,23 @@ describe('cli: run in esmini', function () {
     }
   });
 
+  it('leaves nothing in the temporary directory, the shared parent of run folders included, after a run and after a refusal', function () {
+    requireEsmini(this);
+    const root = examplesWith();
+    const tmp = temporaryFolder('m2s-run-tmpdir-');
+    const ran = runCli(['run', 'main.xosc', '--duration', '1', '--road-path', esminiRoads, '--esmini', esminiBinary], {
+      cwd: root,
+      env: { TMPDIR: tmp },
+    });
+    assert.equal(ran.status, 0, ran.stderr);
+    assert.deepEqual(fs.readdirSync(tmp), []);
+    const main = path.join(root, 'main.xosc');
+    fs.writeFileSync(main, fs.readFileSync(main, 'utf8').replace('maneuverGroupName="CutIn"', 'maneuverGroupName="CutOut"'));
+    const refused = runCli(['run', 'main.xosc', '--esmini', esminiBinary], { cwd: root, env: { TMPDIR: tmp } });
+    assert.equal(refused.status, 1, refused.stderr);
+    assert.deepEqual(fs.readdirSync(tmp), []);
+  });
+
   it('a scenario that cannot be flattened is not run and exits 1', function () {
     requireEsmini(this);
     const root = examplesWith();

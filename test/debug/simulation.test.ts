@@ -70,6 +70,18 @@ describe('debug: a scenario run step by step in esmini library', () => {
     if (!fs.existsSync(cutIn)) this.skip();
   });
 
+  it('leaves nothing in the temporary directory once closed, the shared parent of run folders included', async () => {
+    const before = process.env.TMPDIR;
+    const tmp = temporaryFolder('m2s-debug-tmpdir-');
+    process.env.TMPDIR = tmp;
+    try {
+      await runAll(cutIn);
+    } finally {
+      process.env.TMPDIR = before;
+    }
+    assert.deepEqual(fs.readdirSync(tmp), []);
+  });
+
   it("reports cut-in.xosc's transitions at esmini's times, each on its source line, with why each condition fired", async () => {
     const events = await runAll(cutIn);
     const cutInStart = events.find((event) => event.name === 'CutInEvent' && event.state === 'running');

@@ -7,7 +7,7 @@ import { childRef, diskRef, ScenarioStore } from '../../server/src/core/sources'
 import { parseEsminiLog } from '../../server/src/esmini/log';
 import { locateEsmini, projectEsminiFolder } from '../../server/src/esmini/locate';
 import { mapEsminiMessages, UNPLACED_NOTE, withoutRunFolder } from '../../server/src/esmini/messages';
-import { lastCsvTime, makeRunFolder, runEsminiProcess } from '../../server/src/esmini/process';
+import { lastCsvTime, makeRunFolder, removeRunFolderAt, runEsminiProcess, sharedRunsFolder } from '../../server/src/esmini/process';
 import { EsminiRunOptions, EsminiRunResult, removeRunFolder, runScenario } from '../../server/src/esmini/run';
 import { runLimit, RUNAWAY_SECONDS, TIME_LIMIT_CONDITION, withTimeLimit } from '../../server/src/esmini/timeLimit';
 import { parseXml } from '../../server/src/core/xml';
@@ -958,5 +958,34 @@ describe('esmini: the 31 library examples (SPEC 8) run with no error', function 
       }
       removeRunFolder(result);
     }
+  });
+});
+
+describe('esmini: the shared parent of run folders in the temporary directory', () => {
+  const before = process.env.TMPDIR;
+  afterEach(() => {
+    process.env.TMPDIR = before;
+  });
+
+  it('goes with the last run folder removed from it, stays while another run holds a folder there, and comes back for the next run', () => {
+    process.env.TMPDIR = temporaryFolder('m2s-shared-runs-');
+    const parent = sharedRunsFolder();
+    const first = makeRunFolder(parent);
+    const second = makeRunFolder(parent);
+    fs.writeFileSync(path.join(first, 'scenario.xosc'), '');
+    removeRunFolderAt(first);
+    assert.deepEqual(fs.readdirSync(parent), [path.basename(second)]);
+    removeRunFolderAt(second);
+    assert.equal(fs.existsSync(parent), false);
+    const third = makeRunFolder(parent);
+    assert.equal(path.dirname(third), parent);
+    removeRunFolderAt(third);
+    assert.deepEqual(fs.readdirSync(process.env.TMPDIR), []);
+  });
+
+  it('is never removed when a run folder lies in a folder of the caller (batch --keep-runs)', () => {
+    const own = temporaryFolder('m2s-own-runs-');
+    removeRunFolderAt(makeRunFolder(own));
+    assert.deepEqual(fs.readdirSync(own), []);
   });
 });

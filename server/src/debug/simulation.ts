@@ -1,5 +1,4 @@
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource } from '../core/flatten';
 import { packagedFilesFolder } from '../core/flatten/rebase';
@@ -12,7 +11,7 @@ import { EsminiLibrary, EsminiObjectState, loadEsminiLibrary } from '../esmini/l
 import { readEsminiLog } from '../esmini/log';
 import { EsminiProblem, mapEsminiMessages } from '../esmini/messages';
 import { ControllerFilesFrom, controllerFilesOfFlattening, withCatalogFolderNote } from '../esmini/controllerFiles';
-import { makeRunFolder } from '../esmini/process';
+import { makeRunFolder, removeRunFolderAt, sharedRunsFolder } from '../esmini/process';
 import {
   esminiFolders,
   packagedRoadCopy,
@@ -229,7 +228,7 @@ export class Simulation {
     if (!(this.timeStep > 0) || !(this.duration > 0))
       throw new SimulationLoadError('timeStep and duration must be positive numbers of seconds');
     this.library = loadEsminiLibrary(options.esminiLibrary, options.base);
-    this.folder = makeRunFolder(path.join(os.tmpdir(), 'modular2simple-esmini'));
+    this.folder = makeRunFolder(sharedRunsFolder());
     this.logFile = path.join(this.folder, 'log.txt');
   }
 
@@ -539,7 +538,7 @@ export class Simulation {
   }
 
   private removeFolder(): void {
-    fs.rmSync(this.folder, { recursive: true, force: true });
+    removeRunFolderAt(this.folder);
   }
 }
 

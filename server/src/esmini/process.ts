@@ -1,5 +1,6 @@
 import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
+import * as os from 'node:os';
 import * as path from 'node:path';
 
 /** How a run of esmini ended. */
@@ -234,8 +235,36 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
   });
 }
 
+/** The folder in the temporary directory that holds the private folders of runs, shared by every run on the machine. */
+export function sharedRunsFolder(): string {
+  return path.join(os.tmpdir(), 'modular2simple-esmini');
+}
+
 /** A private folder for one run, outside every user folder. */
 export function makeRunFolder(parent: string, prefix = 'esmini-run-'): string {
-  fs.mkdirSync(parent, { recursive: true });
-  return fs.mkdtempSync(path.join(parent, prefix));
+  for (let attempt = 1; ; attempt++) {
+    fs.mkdirSync(parent, { recursive: true });
+    try {
+      return fs.mkdtempSync(path.join(parent, prefix));
+    } catch (error) {
+      // Another run that left the shared parent empty removed it between the two calls (removeRunFolderAt): made again.
+      if ((error as NodeJS.ErrnoException).code !== 'ENOENT' || attempt >= 5) throw error;
+    }
+  }
+}
+
+/**
+ * Removes a run's private folder, and the shared parent (`sharedRunsFolder`) when that leaves it empty, so that a run
+ * leaves nothing in the temporary directory: a concurrent run's folder keeps it (rmdir refuses a folder not empty).
+ */
+export function removeRunFolderAt(folder: string): void {
+  fs.rmSync(folder, { recursive: true, force: true });
+  const parent = path.dirname(folder);
+  if (parent !== sharedRunsFolder()) return;
+  try {
+    fs.rmdirSync(parent);
+  } catch (error) {
+    // Not empty: another run's folder; gone: another run removed it first.
+    if (!['ENOTEMPTY', 'EEXIST', 'ENOENT'].includes((error as NodeJS.ErrnoException).code ?? '')) throw error;
+  }
 }

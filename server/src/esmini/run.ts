@@ -1,5 +1,4 @@
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener, FlatSource, originOf } from '../core/flatten';
 import { packagedFilesFolder } from '../core/flatten/rebase';
@@ -15,7 +14,16 @@ import { ControllerFilesFrom, controllerFilesOfFlattening, withCatalogFolderNote
 import { locateEsmini } from './locate';
 import { Collision, collisionOf, collisionsIn, EsminiLogMessage, EsminiRemark, isCollisionEnd, isMeantOverlap, readEsminiLog } from './log';
 import { esminiMessageSeverity, EsminiProblem, mapEsminiMessages, withoutRunFolder } from './messages';
-import { EsminiEnd, EsminiProcessResult, fileLines, lastCsvTime, makeRunFolder, runEsminiProcess } from './process';
+import {
+  EsminiEnd,
+  EsminiProcessResult,
+  fileLines,
+  lastCsvTime,
+  makeRunFolder,
+  removeRunFolderAt,
+  runEsminiProcess,
+  sharedRunsFolder,
+} from './process';
 import { storyboardMapOf, traceFromLog } from './storyboardTrace';
 import { LimitKind, NO_END_SECONDS, runLimit, RunLimit, RUNAWAY_SECONDS, withTimeLimit } from './timeLimit';
 
@@ -318,7 +326,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
   if (!location.found) return { ...base, outcome: 'no-esmini', message: location.message, wallMs: elapsed() };
 
   // Flattened for the private run folder, so its file paths name the files the sources name (SPEC 11.6).
-  const runFolder = makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
+  const runFolder = makeRunFolder(options.runsFolder ?? sharedRunsFolder());
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const flat = await flattener.flatten(main, {
     outputPath: scenarioFile,
@@ -327,8 +335,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     controllerFilesHanded: true,
   });
   const flattenProblems = flat.problems;
-  if (flat.text === undefined || withTimeLimit(flat.text, base.duration) === undefined)
-    fs.rmSync(runFolder, { recursive: true, force: true });
+  if (flat.text === undefined || withTimeLimit(flat.text, base.duration) === undefined) removeRunFolderAt(runFolder);
   if (flat.text === undefined) {
     const errors = flattenProblems.filter((problem) => problem.severity === 'error').length;
     const counted = `the scenario has ${errors} error${errors === 1 ? '' : 's'}`;
@@ -580,7 +587,7 @@ async function runLimitedText(
   prepared: { runFolder?: string; files?: readonly { path: string; bytes: Uint8Array }[] } = {},
 ): Promise<LimitedRun> {
   const duration = limit.seconds;
-  const runFolder = prepared.runFolder ?? makeRunFolder(options.runsFolder ?? path.join(os.tmpdir(), 'modular2simple-esmini'));
+  const runFolder = prepared.runFolder ?? makeRunFolder(options.runsFolder ?? sharedRunsFolder());
   const scenarioFile = path.join(runFolder, 'scenario.xosc');
   const csvFile = path.join(runFolder, 'trajectories.csv');
   // A controller's File esmini would miss from the private folder is handed as the file the scenario itself reaches.
@@ -763,5 +770,5 @@ function trimmed(seconds: number): string {
 
 /** Removes a run's private folder (its CSV and scenario copy). */
 export function removeRunFolder(result: Pick<EsminiRunResult, 'runFolder'>): void {
-  if (result.runFolder) fs.rmSync(result.runFolder, { recursive: true, force: true });
+  if (result.runFolder) removeRunFolderAt(result.runFolder);
 }
