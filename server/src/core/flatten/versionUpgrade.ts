@@ -1,5 +1,5 @@
 import { attribute, selfAndDescendants, XmlAttribute, XmlDocument, XmlElement } from '../xml';
-import { fileHeaderOf } from '../schema/version';
+import { statedRevision } from '../schema/version';
 
 /*
  * A group copied from a scenario of an earlier OpenSCENARIO version into a later one (a 1.1 library module into a
@@ -41,9 +41,9 @@ const UPGRADES: readonly Upgrade[] = [
 
 /** The version a FileHeader states as a number (1.3), undefined when it states none. */
 export function statedVersion(document: XmlDocument): number | undefined {
-  const header = fileHeaderOf(document);
-  const major = header ? Number(attribute(header, 'revMajor')?.value.trim()) : NaN;
-  const minor = header ? Number(attribute(header, 'revMinor')?.value.trim()) : NaN;
+  const stated = statedRevision(document);
+  const major = Number(stated.major);
+  const minor = Number(stated.minor);
   return Number.isInteger(major) && Number.isInteger(minor) && minor < 10 ? major + minor / 10 : undefined;
 }
 

@@ -19,11 +19,23 @@ export function fileHeaderOf(document: XmlDocument): XmlElement | undefined {
   return document.root?.children.find((child) => child.name === 'FileHeader');
 }
 
+/** A file's FileHeader and the revMajor/revMinor it writes, trimmed; each undefined when absent. */
+export function statedRevision(document: XmlDocument): {
+  header: XmlElement | undefined;
+  major: string | undefined;
+  minor: string | undefined;
+} {
+  const header = fileHeaderOf(document);
+  return {
+    header,
+    major: header ? attribute(header, 'revMajor')?.value.trim() : undefined,
+    minor: header ? attribute(header, 'revMinor')?.value.trim() : undefined,
+  };
+}
+
 /** The schema a file is read against: the pinned one, or the one its FileHeader's revMajor/revMinor state. */
 export function chooseVersion(document: XmlDocument, setting: SchemaVersionSetting = 'auto'): ChosenVersion {
-  const header = fileHeaderOf(document);
-  const major = header ? attribute(header, 'revMajor')?.value.trim() : undefined;
-  const minor = header ? attribute(header, 'revMinor')?.value.trim() : undefined;
+  const { header, major, minor } = statedRevision(document);
   const stated = major !== undefined && minor !== undefined ? `${major}.${minor}` : undefined;
   if (setting !== 'auto') return { version: setting, stated, header };
   if (stated === undefined) return { version: LATEST, stated, header, fallback: 'the FileHeader states no revMajor/revMinor' };
