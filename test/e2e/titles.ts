@@ -56,9 +56,9 @@ export const INSIDE_TESTS = {
   extractToSimple:
     'Extract to a simple scenario from the light bulb, with the pick list of attributes, replaces a group by a reference that flattens as before',
   libraryCompose:
-    'a main composed from the Scenario Library view with no main open (Insert on a cut-in offers a new composition bench first, then a lead brake and a pedestrian) in 4 steps, saved by the inserts (no Save), checks clean',
+    'a main composed from the Scenario Library view with no main open (Insert on a cut-in offers a new composition bench first, then a lead brake and a pedestrian), left modified as an edit (Ctrl+Z undoes the last), saved by the user: 5 steps, checks clean',
   libraryComposeFromNew:
-    "from an empty folder, New Modular Scenario… on the library's road, then a cut-in, a lead brake and a pedestrian inserted from the Scenario Library view, each adding its actor as its example main has it: saved, clean, in 6 steps",
+    "from an empty folder, New Modular Scenario… on the library's road, then a cut-in, a lead brake and a pedestrian inserted from the Scenario Library view, each adding its actor as its example main has it, left modified until the user saves: clean, in 7 steps",
   libraryInsertHere:
     'Insert library module here… from the light bulb on a ManeuverGroup picks a module in the quick pick and writes it after that group, clean',
   libraryDrop:

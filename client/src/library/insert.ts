@@ -253,12 +253,9 @@ export async function insertIntoMain(
     }
     const inserted = await prepareInsert(server, tracker, module, options);
     if (!inserted) return undefined;
-    // From the view (no cursor position), a main saved before the insert is saved after it: composing needs no Save
-    // step, and the file on disk is the composition (Ctrl+Z still undoes it).
-    const wasSaved = !options.position && !inserted.document.isDirty && !inserted.document.isUntitled;
+    // An edit like VS Code's own: the main is left modified, Ctrl+Z undoes it, and saving is the user's (or files.autoSave's).
     const applied = await vscode.workspace.applyEdit(inserted.edit);
     if (!applied) throw new Error(`the editor refused the edit of ${inserted.main.toString()}`);
-    if (wasSaved && !(await inserted.document.save())) throw new Error(`the editor did not save ${inserted.main.toString()}`);
     const editor = await vscode.window.showTextDocument(inserted.document, { viewColumn: vscode.ViewColumn.One, preserveFocus: false });
     editor.revealRange(new vscode.Range(inserted.line, 0, inserted.line, 0), vscode.TextEditorRevealType.InCenter);
     editor.selection = new vscode.Selection(inserted.line, 0, inserted.line, 0);

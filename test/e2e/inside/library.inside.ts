@@ -51,7 +51,7 @@ async function assertClean(document: vscode.TextDocument): Promise<void> {
 export const libraryTests: InsideTests = {
   libraryCompose: async function () {
     this.timeout(2 * TEST_MS);
-    // A new user's walk: no main open, the Scenario Library view, Insert on three modules, Save.
+    // A new user's walk: no main open, the Scenario Library view, Insert on three modules, Save (the user's decision).
     await revertAndClose();
     // Counted from the open view, as the issue counts: each click, key press and question answered.
     const steps: string[] = [];
@@ -88,9 +88,19 @@ export const libraryTests: InsideTests = {
       );
       for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing'])
         assert.ok(document.getText().includes(`scenarioFileName="library:${name}"`), `no reference to library:${name}`);
-      // No Save step: the inserts from the view save the main they wrote (it was saved before each).
-      assert.equal(document.isDirty, false, 'the inserts left the main unsaved');
-      assert.equal(fs.readFileSync(main, 'utf8'), document.getText(), 'the main on disk is not the composition');
+      // Each insert is an edit, as VS Code's own are: the main is left modified, the file on disk as the bench wrote it.
+      assert.equal(document.isDirty, true, 'an insert saved the main');
+      assert.ok(!fs.readFileSync(main, 'utf8').includes('library:'), 'an insert wrote the main on disk');
+      // Ctrl+Z undoes the last insert, and only it; Ctrl+Shift+Z brings it back.
+      const composed = document.getText();
+      await vscode.commands.executeCommand('undo');
+      assert.ok(!document.getText().includes('library:pedestrian-crossing'), 'Ctrl+Z did not undo the last insert');
+      assert.ok(document.getText().includes('library:lead-brake'), 'Ctrl+Z undid more than the last insert');
+      await vscode.commands.executeCommand('redo');
+      assert.equal(document.getText(), composed, 'redo did not bring the insert back');
+      steps.push('Save');
+      assert.ok(await document.save(), 'the main was not saved');
+      assert.equal(fs.readFileSync(main, 'utf8'), composed, 'the main on disk is not the composition');
 
       // The server's view of the saved main: no error and no warning, as the CLI's check says too.
       await waitFor(
@@ -101,7 +111,7 @@ export const libraryTests: InsideTests = {
       );
       await assertClean(document);
       await screenshot('A main composed from three library modules, clean');
-      assert.ok(steps.length <= 4, `composing took ${steps.length} steps: ${steps.join('; ')}`);
+      assert.ok(steps.length <= 5, `composing took ${steps.length} steps: ${steps.join('; ')}`);
       console.log(`composed in ${steps.length} steps: ${steps.join('; ')}`);
     } finally {
       await revertAndClose();
@@ -168,9 +178,11 @@ export const libraryTests: InsideTests = {
           );
       }
       assert.deepEqual(groups, ['CutIn', 'LeadBrake', 'PedestrianCrossing']);
+      assert.equal(document.isDirty, true, 'an insert saved the main');
+      steps.push('Save');
+      assert.ok(await document.save(), 'the main was not saved');
       const elapsed = (Date.now() - started) / 1000;
       const text = document.getText();
-      assert.equal(document.isDirty, false, 'the inserts left the main unsaved');
       assert.equal(fs.readFileSync(main, 'utf8'), text, 'the main on disk is not the composition');
       assert.deepEqual(
         [...text.matchAll(/<ScenarioObject name="([^"]+)">\s*<(\w+)/g)].map((match) => `${match[1]}: ${match[2]}`),
@@ -199,7 +211,7 @@ export const libraryTests: InsideTests = {
       const entities = positionOf(document, '<ScenarioObject name="adversary"');
       editor?.revealRange(new vscode.Range(entities, entities), vscode.TextEditorRevealType.AtTop);
       await screenshot('From an empty folder: a new main with a cut-in, a lead brake and a pedestrian, each actor added, clean');
-      assert.ok(steps.length <= 6, `composing took ${steps.length} steps: ${steps.join('; ')}`);
+      assert.ok(steps.length <= 7, `composing took ${steps.length} steps: ${steps.join('; ')}`);
       // A figure, not a limit: the harness's time, with no human reading or clicking.
       await post('/figure', {
         name: `composed from an empty folder (${steps.join('; ')}): steps, seconds in the harness`,
