@@ -2,6 +2,8 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { RunEsminiRequest, RunEsminiResult } from '../../common/src/protocol';
+import { Flattener } from '../../server/src/core/flatten';
+import { SourceRef } from '../../server/src/core/sources';
 import { esminiBinary, requireEsmini, esminiRoads } from '../support/esmini';
 import { repoRoot } from '../support/paths';
 import { fileUri, TestClient } from './harness';
@@ -96,6 +98,39 @@ describe('language server: the Run in esmini request over JSON-RPC', function ()
     assert.deepEqual(
       result.esminiFindings.map((finding) => [finding.uri, finding.line, finding.severity, finding.hint]),
       [[fileUri(file), line, 'warning', 'write conditionEdge="none" on this Condition: esmini then fires it when it is first evaluated']],
+    );
+    assert.match(result.esminiFindings[0].message, /^esmini checks a condition's edge only from its second evaluation/);
+  });
+
+  it("under the esmini setting, takes esmini's findings from the analysis the diagnostics show, without analysing the file again", async function () {
+    requireEsmini(this);
+    const file = path.join(root, 'lane_change.xosc');
+    const paper = fs
+      .readFileSync(file, 'utf8')
+      .replace('<SimulationTimeCondition value="0" rule="greaterThan"/>', '<SimulationTimeCondition value="0" rule="equalTo"/>');
+    fs.writeFileSync(file, paper);
+    await client.settingsChanged({ simulator: 'esmini' });
+    const uri = await client.openFile(file);
+    const line = paper.split('\n').findIndex((each) => each.includes('name="ActStart"'));
+    // The setting's analysis, shown: the finding the run answers with among its diagnostics.
+    await client.diagnosticsOf(uri, (shown) => shown.some((diagnostic) => diagnostic.range.start.line === line));
+    const analyze = Flattener.prototype.analyze;
+    let analysedForEsmini = 0;
+    Flattener.prototype.analyze = function (this: Flattener, main: SourceRef) {
+      if (this.simulator === 'esmini') analysedForEsmini++;
+      return analyze.call(this, main);
+    };
+    let result: RunEsminiResult;
+    try {
+      result = await run(uri);
+    } finally {
+      Flattener.prototype.analyze = analyze;
+    }
+    assert.equal(result.outcome, 'ok', result.message);
+    assert.equal(analysedForEsmini, 0);
+    assert.deepEqual(
+      result.esminiFindings.map((finding) => [finding.uri, finding.line, finding.severity]),
+      [[uri, line, 'warning']],
     );
     assert.match(result.esminiFindings[0].message, /^esmini checks a condition's edge only from its second evaluation/);
   });
