@@ -384,6 +384,41 @@ describe('export --target carla, checked by ScenarioRunner (../shared/carla)', f
     );
   });
 
+  it("the paper's case study under 0.9.16 with --road-path: refused at each route that follows a stop, naming why no trajectory can be written (its start is known only as the run goes) and the way out, --carla 0.9.15 (issue 26)", async () => {
+    const result = await exportFile(caseStudyDir, path.join(out, 'case-study.xosc'), ['--force', '--road-path', esminiRoads]);
+    assert.equal(result.code, 1, result.stderr);
+    const refusals = result.report.losses
+      .filter((loss) => loss.kind === 'refused')
+      .sort((a, b) => path.basename(a.file).localeCompare(path.basename(b.file)));
+    const lineOfRoute = (file: string, event: string): number => {
+      const text = fs.readFileSync(path.join(caseStudyDir, file), 'utf8');
+      return text.slice(0, text.indexOf('<AcquirePositionAction>', text.indexOf(`<Event name="${event}"`))).split('\n').length;
+    };
+    const leaving = lineOfRoute('simple_3.xosc', 'SetLeavingRoute');
+    assert.deepEqual(
+      refusals.map((loss) => [path.basename(loss.file), loss.element]),
+      [
+        ['simple_1.xosc', 'AcquirePositionAction'],
+        ['simple_2.xosc', 'AcquirePositionAction'],
+        ['simple_3.xosc', 'AcquirePositionAction'],
+      ],
+    );
+    assert.equal(refusals[2].line, leaving);
+    const noTrajectory =
+      /where '(vehicle_0|police)' is when the action starts is known only as the scenario runs, so no trajectory can start there \(the one 1\.0 action that ScenarioRunner 0\.9\.16 builds with waypoints, a FollowTrajectoryAction, takes its vertices as written, placed once when it starts, and its vehicle controller drives to each by its time counted from then: .*atomic_behaviors\.py:796-803, .*openscenario_parser\.py:1509-1513, .*npc_vehicle_control\.py:103-113\); export with --carla 0\.9\.15 for ScenarioRunner 0\.9\.15/;
+    // The routes after a stop (a StandStillCondition): their own start is the reason.
+    assert.match(refusals[1].carla, /its Event starts on a StandStillCondition: /);
+    assert.match(refusals[2].carla, /its Event starts on 2 conditions: /);
+    // The route before one: that later route is named, with its reason.
+    assert.match(
+      refusals[0].carla,
+      new RegExp(
+        `its story moves 'vehicle_0' too \\(an AcquirePositionAction at simple_3\\.xosc:${leaving - 1}\\), which would end the trajectory in ScenarioRunner and fight it in esmini, and that one cannot be written as a trajectory either: its Event starts on 2 conditions: `,
+      ),
+    );
+    for (const refusal of refusals) assert.match(refusal.carla, noTrajectory);
+  });
+
   it('the case study rebuilt from library modules (examples/case-study) builds under 0.9.16 and 0.9.15, each story element in the tree, nothing dropped', async () => {
     const input = path.join(repoRoot, 'examples', 'case-study', 'main.xosc');
     for (const release of ['0.9.16', '0.9.15']) {

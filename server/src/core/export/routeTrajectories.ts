@@ -15,6 +15,7 @@ import { laneAtPoint, snappedLaneAtPoint } from '../opendrive/lanePosition';
 import { LaneStretch, routeLanes, RouteWaypoint } from '../opendrive/route';
 import { baseName } from '../sources';
 import { CARLA_FACTS } from '../profiles/carla';
+import { SR_ATOMICS, SR_PARSER } from '../profiles/scenarioRunner';
 import { roadPositionPose } from './trajectoryPoint';
 import { actorsOf, constantSpeedOf, mayActOn, scenarioObjectOf, storySpeedOf } from './scenarioTree';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
@@ -58,6 +59,9 @@ const INIT_ATOMICS: ReadonlySet<string> = new Set([
   'LaneOffsetAction',
   'LateralDistanceAction',
 ]);
+
+/** The route actions 0.9.16 crashes on, which the export writes as trajectories. */
+const ROUTES: ReadonlySet<string> = new Set(['AssignRouteAction', 'AcquirePositionAction']);
 
 /** Actions of a story that move an actor across or along other ways than its lane: while a trajectory runs, they would end it (ScenarioRunner) or fight it (esmini). */
 const MOVING: ReadonlySet<string> = new Set(['LateralAction', 'RoutingAction', 'TeleportAction']);
@@ -185,14 +189,20 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
     if (other)
       return `the Init of '${actor}' has ${withArticle(other.name)} too (${lineOf(other) || 'in the Init'}), and ScenarioRunner ${sequence.does} (${sequence.source})`;
   }
+  const starts = inInit ? initRouteStart(tree, actor, action) : storyRouteStart(tree, action, actor, walker);
+  // A route whose start is known only as the run goes (the case study's second routes, after a stop) is refused for that first.
+  if (typeof starts === 'string' && starts.includes(PLACE_UNKNOWN)) return starts;
   for (const story of named(tree, 'Story'))
     for (const moving of named(story, MOVING)) {
-      if (moving === action.parent) continue;
-      if (mayActOn(moving, actor)) {
-        return `its story moves '${actor}' too (${withArticle(moving.children[0]?.name ?? moving.name)} at ${lineOf(moving) || 'a story line'}), which would end the trajectory in ScenarioRunner and fight it in esmini`;
-      }
+      if (moving === action.parent || !mayActOn(moving, actor)) continue;
+      const other = moving.children[0];
+      // Another route of the actor: a trajectory could follow this one only where that one's start is known too.
+      const otherStarts =
+        other && ROUTES.has(other.name) && ancestor(other, 'Init') === undefined ? storyRouteStart(tree, other, actor, walker) : undefined;
+      return `its story moves '${actor}' too (${withArticle(other?.name ?? moving.name)} at ${lineOf(moving) || 'a story line'}), which would end the trajectory in ScenarioRunner and fight it in esmini${
+        typeof otherStarts === 'string' ? `, and that one cannot be written as a trajectory either: ${otherStarts}` : ''
+      }`;
     }
-  const starts = inInit ? initRouteStart(tree, actor, action) : storyRouteStart(tree, action, actor, walker);
   if (typeof starts === 'string') return starts;
   const { speed, along } = starts;
   if (!(speed > 0)) return `'${actor}' keeps the speed ${speed}, and a trajectory at that speed has no times`;
@@ -464,6 +474,12 @@ function storyRouteStart(tree: Node, action: Node, actor: string, walker: boolea
   return { ...starts, later };
 }
 
+/** What a refusal says of a route whose start is known only as the scenario runs. */
+const PLACE_UNKNOWN = 'is known only as the scenario runs';
+
+/** Why ScenarioRunner 0.9.16 has no other way to a place from where the run leaves an actor. */
+const NO_TRAJECTORY_FROM_ANYWHERE = `the one 1.0 action that ScenarioRunner 0.9.16 builds with waypoints, a FollowTrajectoryAction, takes its vertices as written, placed once when it starts, and its vehicle controller drives to each by its time counted from then: ${SR_ATOMICS}:796-803, ${SR_PARSER}:1509-1513, ${CARLA_FACTS.trajectoryTimesSetSpeed.source.split(',')[0]}`;
+
 /** What a walker's refusal for its speed adds: the speed changes it walks in both simulators. */
 const WALKER_LATER = `a walker's SpeedAction to an absolute speed that starts only once its route has (on the route's Action or Event state, or in the route's Act on its own TraveledDistanceCondition at or past where the route starts, or a SimulationTimeCondition at or after a time-started route's start) is kept: both simulators walk the trajectory at the speed it sets (${CARLA_FACTS.walkerSpeedChangeOnTrajectory.source})`;
 
@@ -547,7 +563,7 @@ function storyRouteStartAt(tree: Node, action: Node, actor: string, except: Read
   const act = ancestor(action, 'Act');
   const trigger = event ? child(event, 'StartTrigger') : undefined;
   const conditions = trigger ? childrenNamed(trigger, 'ConditionGroup').flatMap((group) => childrenNamed(group, 'Condition')) : [];
-  const unknown = `where '${actor}' is when the action starts is known only as the scenario runs, so no trajectory can start there`;
+  const unknown = `where '${actor}' is when the action starts ${PLACE_UNKNOWN}, so no trajectory can start there (${NO_TRAJECTORY_FROM_ANYWHERE})`;
   if (!event || !act || conditions.length !== 1)
     return `its Event starts on ${conditions.length === 0 ? 'no condition' : `${conditions.length} conditions`}: ${unknown}`;
   const condition = conditions[0];
