@@ -142,7 +142,7 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
     const place = (text: string, name: string, role: string, rules: TrafficRules = leftHand) => {
       const { module, example } = builtIn(name);
       const result = newEntityChanges(text, module, example, { [role]: role }, { [role]: role, ego: 'Ego' }, undefined, rules);
-      return { text: applied(text, result.changes), added: result.added, values: result.values };
+      return { text: applied(text, result.changes), added: result.added, values: result.values, changes: result.changes };
     };
     // cut-in's example: the ego on lane -1 at s 50, the car 35 m ahead on lane -2, on its right (the slower lane). Here the
     // ego drives along s on lane 1: the car 35 m ahead on lane 2, on its left (the slower lane there), cutting in from it.
@@ -184,6 +184,23 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
       place(onLaneMinus1, 'pedestrian-crossing', 'pedestrian').text,
       /<LanePosition roadId="0" laneId="-4" s="420" offset="0.75">\s*<Orientation type="relative" h="-1.571"/,
     );
+    // An entity of the main already plays the actor (nothing is added): the keys meaning a side are written for the road
+    // all the same, the overtaking car passing on the right.
+    const overtaking = builtIn('overtaking');
+    const withOvertaker = applied(onLane1, place(onLane1, 'overtaking', 'overtaker').changes);
+    const existing = (rules: TrafficRules) =>
+      newEntityChanges(
+        withOvertaker,
+        overtaking.module,
+        overtaking.example,
+        {},
+        { overtaker: 'overtaker', ego: 'Ego', egoGap: 'Ego', egoLane: 'Ego', self: 'overtaker' },
+        undefined,
+        rules,
+      );
+    assert.deepEqual(existing(leftHand), { changes: [], values: { 'RelativeTargetLane.value': '-1' }, added: [] });
+    // On a road of right-hand traffic the same main's ego drives against s: turned, no side swapped.
+    assert.deepEqual(existing({}).values, {});
     // A module whose example is on a road of left-hand traffic (a user's: its ego on lane 1, along s, the car on lane 2, on
     // its left), inserted into a main of right-hand traffic: mirrored too, the car on the ego's right.
     const userCutIn = builtIn('cut-in');

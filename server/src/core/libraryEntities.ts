@@ -7,7 +7,6 @@
 import type { LibraryModule } from './library';
 import { moduleRoles, type ModuleRole } from './libraryInsert';
 import { parseScenario } from './model';
-import type { RoadNetwork } from './opendrive/road';
 import { pathsFor } from './paths';
 import { attribute, attributeValue, escapeAttributeValue, XmlAttribute, XmlElement } from './xml';
 
@@ -103,11 +102,6 @@ const LATERAL_OFFSET_KEY = /(^|\.)(AbsoluteTargetLaneOffset\.value|LaneChangeAct
 /** Keys of a lane change's side, counted from the heading of the entity they name (+1 its left): swapped on a road of the other traffic rule. */
 const SIDE_KEY = /(^|\.)RelativeTargetLane\.value$/;
 
-/** The ids of a road network's roads of left-hand traffic (`rule="LHT"`, OpenDRIVE 1.5; right-hand traffic when it is not given). */
-export function leftHandRoads(network: RoadNetwork): Set<string> {
-  return new Set(network.roads.filter((road) => road.leftHandTraffic).map((road) => road.id));
-}
-
 /** The roads of the main's and of the example's road file that are of left-hand traffic (none known: right-hand, OpenDRIVE's default). */
 export interface TrafficRules {
   main?: ReadonlySet<string>;
@@ -116,6 +110,53 @@ export interface TrafficRules {
 
 /** +1 where a lane is driven along s (right-hand traffic: the negative lanes; left-hand: the positive ones), -1 against it. */
 const drivingSense = (laneId: number, leftHand: boolean) => ((leftHand ? laneId > 0 : laneId < 0) ? 1 : -1);
+
+/**
+ * How the main's ego stands to the example's, as its driver sees the road: `along` -1 where one drives against s and the
+ * other along it (the placement turned half round), `mirrored` where one road is of left-hand traffic and the other not
+ * (left and right swapped, as a driver there expects), `lateral` -1 where the road's t runs the other way from the driver's left.
+ */
+interface Frame {
+  along: number;
+  lateral: number;
+  mirrored: boolean;
+  mainLeftHand: boolean;
+  exampleLeftHand: boolean;
+}
+
+/** The frame of the main's ego placed by `mainPosition` against the example's by `examplePosition` (LanePositions); undefined when either is no LanePosition. */
+function frameOf(
+  mainRoot: XmlElement | undefined,
+  mainPosition: XmlElement | undefined,
+  exampleRoot: XmlElement | undefined,
+  examplePosition: XmlElement | undefined,
+  rules: TrafficRules | undefined,
+): Frame | undefined {
+  const mainLane = numberIn(mainRoot, valueOf(mainPosition, 'laneId'));
+  const exampleLane = numberIn(exampleRoot, valueOf(examplePosition, 'laneId'));
+  if (mainLane === undefined || exampleLane === undefined) return undefined;
+  const mainLeftHand = rules?.main?.has(valueIn(mainRoot, valueOf(mainPosition, 'roadId')) ?? '') ?? false;
+  const exampleLeftHand = rules?.example?.has(valueIn(exampleRoot, valueOf(examplePosition, 'roadId')) ?? '') ?? false;
+  const mirrored = mainLeftHand !== exampleLeftHand;
+  const along = drivingSense(mainLane, mainLeftHand) * drivingSense(exampleLane, exampleLeftHand);
+  return { along, lateral: mirrored ? -along : along, mirrored, mainLeftHand, exampleLeftHand };
+}
+
+/**
+ * The module's keys whose default means a side, written for the frame: an absolute lane offset an action moves to, which
+ * esmini takes along the road's t (OSCPrivateAction.cpp:1078, 920), negated where t runs the other way from the driver's
+ * left; a lane change's side, which esmini counts from the heading (OSCPrivateAction.cpp:895), negated where mirrored.
+ */
+function sideValues(module: LibraryModule, frame: Frame): Record<string, string> {
+  const values: Record<string, string> = {};
+  for (const parameter of module.parameters) {
+    const value = numberIn(undefined, parameter.defaultValue);
+    if (value === undefined || value === 0) continue;
+    if ((LATERAL_OFFSET_KEY.test(parameter.key) && frame.lateral < 0) || (SIDE_KEY.test(parameter.key) && frame.mirrored))
+      values[parameter.key] = rounded(-value);
+  }
+  return values;
+}
 
 /** Lane ids skip 0: as a count from the centre (…, -2, -1 | 0, 1, …), a lane further right is one less. */
 const laneIndex = (laneId: number) => (laneId > 0 ? laneId - 1 : laneId);
@@ -208,23 +249,13 @@ export function newEntityChanges(
 ): NewEntities {
   const result: NewEntities = { changes: [], values: {}, added: [] };
   const roles = moduleRoles(module).filter((role) => create[role.name] !== undefined);
-  if (roles.length === 0) return result;
   const main = parseScenario(mainText);
   const root = main.document.root;
-  if (!root || main.document.problems.some((problem) => problem.severity === 'error'))
-    throw new Error('the main is not well-formed XML: fix it first (the Problems panel says where)');
-  const entities = child(root, 'Entities');
-  if (!entities) throw new Error('the main has no Entities to add a new entity to: add <Entities/> after its RoadNetwork');
+  const wellFormed = root !== undefined && !main.document.problems.some((problem) => problem.severity === 'error');
   const storyboard = child(root, 'Storyboard');
-  if (!storyboard) throw new Error('the main has no Storyboard (with an Init) to place a new entity in');
-  const actions = child(child(storyboard, 'Init'), 'Actions');
-  if (!actions)
-    throw new Error(
-      "the main's Storyboard has no Init with Actions to place a new entity in: add <Init><Actions/></Init> as its first element",
-    );
-  const mainNames = main.entities.map((entity) => entity.name.toLowerCase());
   const example = parseScenario(exampleText);
-  const exampleStoryboard = child(example.document.root, 'Storyboard');
+  const exampleRoot = example.document.root;
+  const exampleStoryboard = child(exampleRoot, 'Storyboard');
   const roleReference = moduleRoles(module).find(
     (role: ModuleRole) => create[role.name] === undefined && players[role.name] !== undefined && privateOf(exampleStoryboard, role.name),
   );
@@ -236,6 +267,29 @@ export function newEntityChanges(
     : mainEgo && !Object.values(create).includes(mainEgo.name) && privateOf(exampleStoryboard, EGO)
       ? { name: EGO, player: mainEgo.name }
       : undefined;
+  // The ego's frame against the example's, for the keys whose default means a side, whoever plays the actor.
+  const frame =
+    wellFormed && reference
+      ? frameOf(
+          root,
+          placementOf(privateOf(storyboard, reference.player)).lanePosition,
+          exampleRoot,
+          placementOf(privateOf(exampleStoryboard, reference.name)).lanePosition,
+          rules,
+        )
+      : undefined;
+  if (frame) Object.assign(result.values, sideValues(module, frame));
+  if (roles.length === 0) return result;
+  if (!root || !wellFormed) throw new Error('the main is not well-formed XML: fix it first (the Problems panel says where)');
+  const entities = child(root, 'Entities');
+  if (!entities) throw new Error('the main has no Entities to add a new entity to: add <Entities/> after its RoadNetwork');
+  if (!storyboard) throw new Error('the main has no Storyboard (with an Init) to place a new entity in');
+  const actions = child(child(storyboard, 'Init'), 'Actions');
+  if (!actions)
+    throw new Error(
+      "the main's Storyboard has no Init with Actions to place a new entity in: add <Init><Actions/></Init> as its first element",
+    );
+  const mainNames = main.entities.map((entity) => entity.name.toLowerCase());
   const unit = indentUnit(mainText);
   const entitiesIndent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, entities.start)))?.[0] ?? '';
   const actionsIndent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, actions.start)))?.[0] ?? '';
@@ -275,7 +329,6 @@ export function newEntityChanges(
       const exampleReference = placementOf(privateOf(exampleStoryboard, reference.name));
       const player = reference.player;
       const mainReference = placementOf(privateOf(storyboard, player));
-      const exampleRoot = example.document.root;
       const [ownLane, ownS, refLane, refS] = [
         numberIn(exampleRoot, valueOf(own.lanePosition, 'laneId')),
         numberIn(exampleRoot, valueOf(own.lanePosition, 's')),
@@ -311,20 +364,14 @@ export function newEntityChanges(
             text: own.lanePosition.selfClosing ? `${open}/>` : `${open}>${inner}</RelativeLanePosition>`,
           });
           where = `${rounded(Math.abs(distance))} m ${distance >= 0 ? 'ahead of' : 'behind'} ${player}, ${dLane === 0 ? 'in its lane' : `${Math.abs(dLane)} lane${Math.abs(dLane) > 1 ? 's' : ''} ${dLane < 0 ? 'right' : 'left'} of it`} (RelativeLanePosition)`;
-        } else {
+        } else if (frame) {
           // The example's placement as its ego's driver sees it (ahead, to the left), turned half round where the main's ego
           // drives against s as the example's does not, and mirrored where one road is of left-hand traffic and the other
           // not (a driver there expects the other lanes, the overtaking and cutting in, on the other side): esmini drives a
           // lane by its side and the road's rule (RoadManager.cpp:11158) and reads lane changes and offsets relative to the
           // entity's heading (OSCPrivateAction.cpp:895, 1087), a LanePosition's offset along the road's t (RoadManager.cpp:9746).
-          const mainLeftHand = rules?.main?.has(valueIn(root, mainRoad) ?? '') ?? false;
-          const exampleLeftHand =
-            rules?.example?.has(valueIn(exampleRoot, valueOf(exampleReference.lanePosition, 'roadId')) ?? '') ?? false;
-          const mirrored = mainLeftHand !== exampleLeftHand;
-          const along = drivingSense(mainLane, mainLeftHand) * drivingSense(refLane, exampleLeftHand);
+          const { along, lateral, mirrored, mainLeftHand, exampleLeftHand } = frame;
           const turned = along < 0;
-          // Across the road (its t): turned half round, t runs the other way; mirrored, too.
-          const lateral = mirrored ? -along : along;
           const laneId = laneOfIndex(laneIndex(mainLane) + lateral * dLane);
           const s = mainS + along * distance;
           if (s < 0)
@@ -347,15 +394,6 @@ export function newEntityChanges(
           const headingValue = numberIn(exampleRoot, heading?.value);
           if (mirrored && heading && headingValue !== undefined && headingValue !== 0 && valueOf(orientation, 'type') === 'relative')
             replacements.push({ attribute: heading, value: rounded(-headingValue) });
-          // An absolute lane offset an action moves to, taken along t as well (OSCPrivateAction.cpp:1078, 920), and a lane
-          // change's side (counted from the heading): their defaults turned and mirrored with the placement.
-          if (role.actor)
-            for (const parameter of module.parameters) {
-              const value = numberIn(undefined, parameter.defaultValue);
-              if (value === undefined || value === 0) continue;
-              if ((LATERAL_OFFSET_KEY.test(parameter.key) && lateral < 0) || (SIDE_KEY.test(parameter.key) && mirrored))
-                result.values[parameter.key] = rounded(-value);
-            }
           const how = [
             ...(turned ? [`turned round: ${player} drives against the road's s, the example's ${reference.name} along it`] : []),
             ...(mirrored

@@ -11,9 +11,9 @@ import {
 } from '../../../common/src/libraryProtocol';
 import { decodeScenario } from '../core/encoding';
 import { findModule, LibraryModule, listLibraries } from '../core/library';
-import { entityOffers, leftHandRoads, newEntityChanges, TrafficRules } from '../core/libraryEntities';
+import { entityOffers, newEntityChanges, TrafficRules } from '../core/libraryEntities';
 import { parseScenario } from '../core/model';
-import { MAX_ROAD_FILE_BYTES, parseOpenDrive } from '../core/opendrive/road';
+import { MAX_ROAD_FILE_BYTES, openDriveLeftHandRoads } from '../core/opendrive/road';
 import { Evaluator } from '../core/semantics/evaluator';
 import { semanticModelOf } from '../core/semantics/model';
 import { locateRoadFile, readFoundRoad } from '../core/semantics/roadFiles';
@@ -120,14 +120,13 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   let entities;
   try {
     const mainFile = filePathOf(params.uri);
-    // A new entity is placed as a driver of the main's road expects it: its traffic rule against the example's.
-    const rules: TrafficRules =
-      create.length > 0 && module.example
-        ? {
-            main: await leftHandRoadsOf(workspace, ref, text),
-            example: await leftHandRoadsOf(workspace, diskRef(module.example), exampleText),
-          }
-        : {};
+    // A new entity is placed, and a key meaning a side written, as a driver of the main's road expects: its rule against the example's.
+    const rules: TrafficRules = module.example
+      ? {
+          main: await leftHandRoadsOf(workspace, ref, text),
+          example: await leftHandRoadsOf(workspace, diskRef(module.example), exampleText),
+        }
+      : {};
     entities = newEntityChanges(
       text,
       module,
@@ -169,7 +168,7 @@ async function leftHandRoadsOf(workspace: Workspace, ref: SourceRef, text: strin
   if (!road?.resolved && !road?.packaged) return undefined;
   const bytes = await readFoundRoad(workspace.store, road, MAX_ROAD_FILE_BYTES, nodeFileSystem).catch(() => undefined);
   if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
-  return leftHandRoads(parseOpenDrive(decodeUtf8(bytes)));
+  return openDriveLeftHandRoads(decodeUtf8(bytes));
 }
 
 function lineCount(text: string): number {

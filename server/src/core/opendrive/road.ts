@@ -247,7 +247,7 @@ function roadOf(element: XmlElement, problems: RoadNetwork['problems']): Road {
     name: attributeValue(element, 'name') ?? '',
     length,
     junction: attributeValue(element, 'junction') ?? '-1',
-    leftHandTraffic: attributeValue(element, 'rule') === 'LHT',
+    leftHandTraffic: isLeftHandTraffic(element),
     geometries,
     laneOffsets: childrenNamed(lanesElement, 'laneOffset')
       .map((offset) => cubicOf(offset, 's'))
@@ -287,6 +287,17 @@ function signalIdsOf(root: XmlElement | undefined): Set<string> {
 export function openDriveSignals(text: string): { hasRoads: boolean; signalIds: Set<string> } {
   const root = parseXml(text).root;
   return { hasRoads: root?.name === 'OpenDRIVE' && childrenNamed(root, 'road').length > 0, signalIds: signalIdsOf(root) };
+}
+
+/** Whether a road element is of left-hand traffic (`rule="LHT"`, OpenDRIVE 1.5; right-hand where it is not given). */
+function isLeftHandTraffic(road: XmlElement): boolean {
+  return attributeValue(road, 'rule') === 'LHT';
+}
+
+/** The ids of an OpenDRIVE file's roads of left-hand traffic, without reading their geometry and lanes. */
+export function openDriveLeftHandRoads(text: string): Set<string> {
+  const roads = childrenNamed(parseXml(text).root, 'road').filter(isLeftHandTraffic);
+  return new Set(roads.map((road) => attributeValue(road, 'id') ?? ''));
 }
 
 /** Reads an OpenDRIVE file's roads. Problems are collected, never thrown: a partial network still draws. */
