@@ -358,6 +358,18 @@ describe('cli: batch through a Redis queue', function () {
     everyRowOnce(path.join(root, 'queued'));
   });
 
+  it('a worker that stops leaves nothing in the temporary directory, the shared parent of workers included', async function () {
+    requireRedis(this);
+    redis = await startRedis();
+    const tmp = temporaryFolder('m2s-worker-tmpdir-');
+    const worker = background(['worker', '--queue', redis.url, '--idle-exit', '1', '--esmini', process.execPath], repoRoot, {
+      TMPDIR: tmp,
+    });
+    const ended = await worker.ended;
+    assert.equal(ended.code, 0, ended.output);
+    assert.deepEqual(fs.readdirSync(tmp), []);
+  });
+
   it('Redis unreachable: a clear message, exit 3, nothing written; a worker likewise', async () => {
     const root = batchFolder(3);
     folders.push(root);

@@ -1,6 +1,5 @@
 import { setMaxListeners } from 'node:events';
 import * as fs from 'node:fs';
-import * as os from 'node:os';
 import * as path from 'node:path';
 import { Job, Worker } from 'bullmq';
 import { CatalogLoader } from '../core/semantics/catalogs';
@@ -8,7 +7,7 @@ import { nodeFileSystem, ScenarioStore } from '../core/sources';
 import { rebasedConcreteText } from '../core/variations';
 import { controllerFilesFrom } from '../esmini/controllerFiles';
 import { withoutRunFolder } from '../esmini/messages';
-import { makeRunFolder } from '../esmini/process';
+import { makeRunFolder, removeRunFolderAt, sharedRunsFolder } from '../esmini/process';
 import { connect, connectionOf, fileKey, LOCK_DURATION_MS, QUEUE_NAME, resultsKey, RunJob, STALLED_INTERVAL_MS } from './queue';
 import { BatchOutput, runLine } from './progress';
 import type { BatchRow } from './row';
@@ -57,7 +56,7 @@ function saidFrom(row: BatchRow, layout: string, jobScenarioFolder: string, user
  */
 export async function runWorker(url: URL, options: WorkerOptions): Promise<number> {
   const client = await connect(url);
-  const home = makeRunFolder(path.join(os.tmpdir(), 'modular2simple-worker'), 'worker-');
+  const home = makeRunFolder(sharedRunsFolder('worker'), 'worker-');
   const cache = path.join(home, 'files');
   fs.mkdirSync(cache, { recursive: true });
   const fetching = new Map<string, Promise<string>>();
@@ -183,7 +182,7 @@ export async function runWorker(url: URL, options: WorkerOptions): Promise<numbe
     await Promise.race([worker.disconnect(), new Promise((resolve) => setTimeout(resolve, 1000).unref())]);
   }
   client.disconnect();
-  fs.rmSync(home, { recursive: true, force: true });
+  removeRunFolderAt(home);
   if (connectionError && !options.quiet) options.io.err(`worker: the last Redis error was: ${connectionError.message}`);
   if (closed) return 0;
   // The Redis client's reconnection timers would keep the process alive: it ends once its output is written.

@@ -235,9 +235,12 @@ export function runEsminiProcess(options: EsminiProcessOptions): Promise<EsminiP
   });
 }
 
-/** The folder in the temporary directory that holds the private folders of runs, shared by every run on the machine. */
-export function sharedRunsFolder(): string {
-  return path.join(os.tmpdir(), 'modular2simple-esmini');
+/** The folders in the temporary directory that the private folders of runs (and of `worker`s) share with every run on the machine. */
+const SHARED_RUNS_FOLDERS = ['modular2simple-esmini', 'modular2simple-worker'] as const;
+
+/** The folder in the temporary directory that holds the private folders of runs (`worker`: of workers), shared by every one on the machine. */
+export function sharedRunsFolder(of: 'runs' | 'worker' = 'runs'): string {
+  return path.join(os.tmpdir(), SHARED_RUNS_FOLDERS[of === 'runs' ? 0 : 1]);
 }
 
 /** A private folder for one run, outside every user folder. */
@@ -254,13 +257,13 @@ export function makeRunFolder(parent: string, prefix = 'esmini-run-'): string {
 }
 
 /**
- * Removes a run's private folder, and the shared parent (`sharedRunsFolder`) when that leaves it empty, so that a run
+ * Removes a run's (or a worker's) private folder, and the shared parent (`sharedRunsFolder`) when that leaves it empty, so that a run
  * leaves nothing in the temporary directory: a concurrent run's folder keeps it (rmdir refuses a folder not empty).
  */
 export function removeRunFolderAt(folder: string): void {
   fs.rmSync(folder, { recursive: true, force: true });
   const parent = path.dirname(folder);
-  if (parent !== sharedRunsFolder()) return;
+  if (parent !== sharedRunsFolder() && parent !== sharedRunsFolder('worker')) return;
   try {
     fs.rmdirSync(parent);
   } catch (error) {
