@@ -1,5 +1,7 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
+// The module object itself, whose functions the product's modules call through: a test can stand in for one of them.
+import nodeFs = require('node:fs');
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { Flattener } from '../../server/src/core/flatten';
@@ -980,6 +982,31 @@ describe('esmini: the shared parent of run folders in the temporary directory', 
     const third = makeRunFolder(parent);
     assert.equal(path.dirname(third), parent);
     removeRunFolderAt(third);
+    assert.deepEqual(fs.readdirSync(process.env.TMPDIR), []);
+  });
+
+  it('is made again when another run removes it between making it and making the run folder in it', () => {
+    process.env.TMPDIR = temporaryFolder('m2s-shared-runs-race-');
+    const parent = sharedRunsFolder();
+    const mkdtemp = nodeFs.mkdtempSync;
+    let removedOnce = false;
+    // The other run's removal lands between makeRunFolder's mkdirSync and mkdtempSync.
+    nodeFs.mkdtempSync = ((prefix: string) => {
+      if (!removedOnce) {
+        removedOnce = true;
+        fs.rmdirSync(parent);
+      }
+      return mkdtemp(prefix);
+    }) as typeof nodeFs.mkdtempSync;
+    let folder: string;
+    try {
+      folder = makeRunFolder(parent);
+    } finally {
+      nodeFs.mkdtempSync = mkdtemp;
+    }
+    assert.ok(removedOnce);
+    assert.equal(path.dirname(folder), parent);
+    removeRunFolderAt(folder);
     assert.deepEqual(fs.readdirSync(process.env.TMPDIR), []);
   });
 
