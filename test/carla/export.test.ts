@@ -1383,6 +1383,45 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
     await assertMovesAlike(original, result.output, 20, 0.21);
   });
 
+  it("past a trajectory's end on Town05 esmini goes back to junction road 524's s 14.2854: it places no point of that road beyond its lane sections of 74 nm and 30 µm there, and does on a copy without them (docs/carla.md)", async function () {
+    requireEsmini(this);
+    const town = fs.readFileSync(path.join(esminiRoads, 'Town05.xodr'), 'utf8');
+    const road = /<road [^>]*id="524"[^>]*>[\s\S]*?<\/road>/.exec(town)?.[0] ?? '';
+    const tiny = ['1.4285353456450338e+1', '1.4285353530731442e+1'];
+    let repaired = road;
+    for (const s of tiny)
+      for (const element of ['geometry', 'laneSection'])
+        repaired = repaired.replace(new RegExp(`<${element} s="${s.replace(/[.+]/g, '\\$&')}"[\\s\\S]*?</${element}>\\s*`), '');
+    assert.equal(repaired.split('<laneSection ').length, road.split('<laneSection ').length - 2, 'the two lane sections are in the road');
+    const copy = path.join(out, 'Town05-repaired.xodr');
+    fs.writeFileSync(copy, town.replace(road, repaired));
+    // A car placed at x -133 on road 524 (s 20.7), heading west at 8 m/s: where is it one step later?
+    const firstStep = async (roadFile: string): Promise<number> => {
+      const scenario = path.join(out, `${path.basename(roadFile, '.xodr')}-probe.xosc`);
+      fs.writeFileSync(
+        scenario,
+        testScenario({
+          revMinor: 0,
+          description: 'a point on road 524',
+          road: roadFile,
+          entities: vehicle('Car', 'ego_vehicle'),
+          init: `
+        <Private entityRef="Car">
+          <PrivateAction><TeleportAction><Position><WorldPosition x="-133" y="0.4" z="0" h="3.144"/></Position></TeleportAction></PrivateAction>
+          <PrivateAction>${speedChange('step', 0, 'time', 8)}</PrivateAction>
+        </Private>`,
+          story: STILL_STORY,
+          stopAt: 0.5,
+        }),
+      );
+      const car = tracksOf(await runEsmini(scenario, 0.5)).get('Car') ?? [];
+      return Math.hypot(car[1].x - car[0].x, car[1].y - car[0].y);
+    };
+    // Town05 as shipped: back to s 14.2854 (x -126.6) and 0.4 m on, 6 m east, where 0.4 m west was due.
+    assert.ok(Math.abs((await firstStep(path.join(esminiRoads, 'Town05.xodr'))) - 6) < 0.1);
+    assert.ok(Math.abs((await firstStep(copy)) - 0.4) < 0.01);
+  });
+
   /** `text` exported and refused once, at the walker's AcquirePositionAction (the last): what ScenarioRunner would do, as the refusal says. */
   async function walkerRouteRefusal(original: string, text: string): Promise<string> {
     const refused = await refusedExport(original, text);
