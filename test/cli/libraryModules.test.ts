@@ -7,7 +7,7 @@ import { LibraryModule, listLibraries } from '../../server/src/core/library';
 import { entityOffers, newEntityChanges } from '../../server/src/core/libraryEntities';
 import { guessPlayer, insertModuleGroup, mainShape, moduleRoles } from '../../server/src/core/libraryInsert';
 import { newMainScenario } from '../../server/src/core/newScenario';
-import { openDriveLeftHandRoads } from '../../server/src/core/opendrive/road';
+import { openDriveSignals } from '../../server/src/core/opendrive/road';
 import { nodeFileSystem } from '../../server/src/core/sources';
 import { builtInLibraryFolder, libraryFolders } from '../../server/src/libraries';
 import { harnessVerdicts, requireCarlaHarness } from '../support/carla';
@@ -318,7 +318,7 @@ describe('library modules: each verified in esmini and CARLA (issue 28)', functi
         if (players[role.name] === offer?.name) create[role.name] = offer.name;
       }
       const mainFile = path.join(composed, `${module.name}.xosc`);
-      const rules = { main: openDriveLeftHandRoads(fs.readFileSync(side === 'leftHand' ? leftHandRoad : road, 'utf8')) };
+      const rules = { main: openDriveSignals(fs.readFileSync(side === 'leftHand' ? leftHandRoad : road, 'utf8')).leftHandRoads };
       const entities = newEntityChanges(
         text,
         module,

@@ -205,18 +205,19 @@ describe('core: OpenDRIVE signals read alone', () => {
   /** What the signal rule took from parseOpenDrive before openDriveSignals: the same for every text. */
   const fromWholeParse = (text: string) => {
     const network = parseOpenDrive(text);
-    return { hasRoads: network.roads.length > 0, signalIds: network.signalIds };
+    const leftHandRoads = new Set(network.roads.filter((road) => road.leftHandTraffic).map((road) => road.id));
+    return { hasRoads: network.roads.length > 0, signalIds: network.signalIds, leftHandRoads };
   };
   const withSignals = `<?xml version="1.0"?><OpenDRIVE><header/>
   <road id="1" length="10" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="10"><line/></geometry></planView>
     <signals><signal id="101" s="5" t="-3"/><signal id="" s="6"/><signal s="7"/></signals>
     <objects><signal id="not-a-signal"/></objects></road>
-  <road id="2" length="10" junction="-1"><signals><signal id="&amp;7" s="1"/></signals><signals><signal id="second-list"/></signals></road>
+  <road id="2" length="10" junction="-1" rule="LHT"><signals><signal id="&amp;7" s="1"/></signals><signals><signal id="second-list"/></signals></road>
   <controller id="7"><control signalId="102"/><control signalId="101"/></controller>
   <junction id="9"><controller id="7"/></junction>
 </OpenDRIVE>`;
 
-  it("gives parseOpenDrive's signal ids and whether it read roads, on esmini's roads and on broken or foreign texts", () => {
+  it("gives parseOpenDrive's signal ids, roads of left-hand traffic and whether it read roads, on esmini's roads and on broken or foreign texts", () => {
     const roads = fs.existsSync(esminiRoads) ? fs.readdirSync(esminiRoads).filter((name) => name.endsWith('.xodr')) : [];
     const texts = roads.map((name) => fs.readFileSync(path.join(esminiRoads, name), 'utf8'));
     texts.push(withSignals, '<OpenSCENARIO><road id="1"/></OpenSCENARIO>', '<OpenDRIVE/>', '', 'not xml', '<OpenDRIVE><road id="1"');
@@ -225,6 +226,8 @@ describe('core: OpenDRIVE signals read alone', () => {
     for (const text of texts) assert.deepEqual(openDriveSignals(text), fromWholeParse(text), text.slice(0, 200));
     // A road's first <signals> list, as parseOpenDrive reads it; ids decoded; an empty id is none.
     assert.deepEqual([...openDriveSignals(withSignals).signalIds].sort(), ['&7', '101', '102']);
+    // A road's traffic rule, as parseOpenDrive reads it: right-hand unless rule="LHT".
+    assert.deepEqual([...openDriveSignals(withSignals).leftHandRoads], ['2']);
     assert.ok(texts.length > 20 && roads.length > 0, "esmini's roads were read");
   });
 });

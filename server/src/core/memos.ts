@@ -201,7 +201,7 @@ export const CORE_MEMOS = {
     where: '`core/semantics/roadNetwork.ts`, per store',
     key: 'a `ScenarioStore`, then the road file',
     holds:
-      'the signal ids of the road file a scenario names, for the road rules: a read reused for 2 s, and the signals by path and content hash',
+      'the signal ids and roads of left-hand traffic of the road file a scenario names, for the road rules and Insert into Main: a read reused for 2 s, and the summary by path and content hash',
     bound: { entries: 8, freshMs: 2000, text: '8 files by content hash; reads of the last 2 s' },
     invalidated: 'a read older than 2 s is read again; a changed text is parsed again',
   },

@@ -13,12 +13,11 @@ import { decodeScenario } from '../core/encoding';
 import { findModule, LibraryModule, listLibraries } from '../core/library';
 import { entityOffers, newEntityChanges, TrafficRules } from '../core/libraryEntities';
 import { parseScenario } from '../core/model';
-import { MAX_ROAD_FILE_BYTES, openDriveLeftHandRoads } from '../core/opendrive/road';
 import { Evaluator } from '../core/semantics/evaluator';
 import { semanticModelOf } from '../core/semantics/model';
-import { locateRoadFile, readFoundRoad } from '../core/semantics/roadFiles';
+import { locateRoadFile } from '../core/semantics/roadFiles';
+import { roadSignalsOf } from '../core/semantics/roadNetwork';
 import { diskRef, nodeFileSystem, SourceRef } from '../core/sources';
-import { decodeUtf8 } from '../core/text';
 import { entityKinds, freeEntities, guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
 import { LineIndex } from '../core/text';
 import { listTemplates, templateOutputs } from '../libraries';
@@ -160,15 +159,13 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
 
 /**
  * The ids of the roads of left-hand traffic in a scenario's road file, found as a run finds it; undefined where it names
- * none, or it is not found or cannot be read (its placement then is that of right-hand traffic, OpenDRIVE's default).
+ * none, or it is not found or cannot be read (its placement then is that of right-hand traffic, OpenDRIVE's default; the
+ * diagnostics say why the road file is not read). Read through the road memo the road rules use, not again per insert.
  */
-async function leftHandRoadsOf(workspace: Workspace, ref: SourceRef, text: string): Promise<Set<string> | undefined> {
+async function leftHandRoadsOf(workspace: Workspace, ref: SourceRef, text: string): Promise<ReadonlySet<string> | undefined> {
   const document = parseScenario(text).document;
   const road = await locateRoadFile(workspace.store, ref, document, new Evaluator(semanticModelOf(document)), [], nodeFileSystem);
-  if (!road?.resolved && !road?.packaged) return undefined;
-  const bytes = await readFoundRoad(workspace.store, road, MAX_ROAD_FILE_BYTES, nodeFileSystem).catch(() => undefined);
-  if (!bytes || bytes.byteLength > MAX_ROAD_FILE_BYTES) return undefined;
-  return openDriveLeftHandRoads(decodeUtf8(bytes));
+  return (await roadSignalsOf(workspace.store, road))?.leftHandRoads;
 }
 
 function lineCount(text: string): number {

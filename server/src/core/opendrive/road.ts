@@ -280,24 +280,31 @@ function signalIdsOf(root: XmlElement | undefined): Set<string> {
   return signalIds;
 }
 
+/** What `openDriveSignals` reads of a road file: whether it is an OpenDRIVE file with roads, its signal ids and its roads of left-hand traffic. */
+export interface OpenDriveSignals {
+  hasRoads: boolean;
+  signalIds: Set<string>;
+  /** The ids of the roads of left-hand traffic (`rule="LHT"`). */
+  leftHandRoads: Set<string>;
+}
+
 /**
- * What parseOpenDrive gives of a file's signals, without reading its roads' geometry and lanes (half its time on
- * esmini's Town05.xodr): whether it is an OpenDRIVE file with roads, and its signal ids.
+ * What parseOpenDrive gives of a file's signals and traffic rules, without reading its roads' geometry and lanes (half its
+ * time on esmini's Town05.xodr).
  */
-export function openDriveSignals(text: string): { hasRoads: boolean; signalIds: Set<string> } {
+export function openDriveSignals(text: string): OpenDriveSignals {
   const root = parseXml(text).root;
-  return { hasRoads: root?.name === 'OpenDRIVE' && childrenNamed(root, 'road').length > 0, signalIds: signalIdsOf(root) };
+  const roads = root?.name === 'OpenDRIVE' ? childrenNamed(root, 'road') : [];
+  return {
+    hasRoads: roads.length > 0,
+    signalIds: signalIdsOf(root),
+    leftHandRoads: new Set(roads.filter(isLeftHandTraffic).map((road) => attributeValue(road, 'id') ?? '')),
+  };
 }
 
 /** Whether a road element is of left-hand traffic (`rule="LHT"`, OpenDRIVE 1.5; right-hand where it is not given). */
 function isLeftHandTraffic(road: XmlElement): boolean {
   return attributeValue(road, 'rule') === 'LHT';
-}
-
-/** The ids of an OpenDRIVE file's roads of left-hand traffic, without reading their geometry and lanes. */
-export function openDriveLeftHandRoads(text: string): Set<string> {
-  const roads = childrenNamed(parseXml(text).root, 'road').filter(isLeftHandTraffic);
-  return new Set(roads.map((road) => attributeValue(road, 'id') ?? ''));
 }
 
 /** Reads an OpenDRIVE file's roads. Problems are collected, never thrown: a partial network still draws. */

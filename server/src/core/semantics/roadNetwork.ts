@@ -4,11 +4,13 @@ import { ScenarioStore } from '../sources';
 import { decodeUtf8 } from '../text';
 import { CORE_MEMOS, coreMemo } from '../memos';
 
-/** What the road-network rules need of the OpenDRIVE file a scenario names (its `RoadNetwork/LogicFile`). */
+/** What the road-network rules and Insert into Main need of the OpenDRIVE file a scenario names (its `RoadNetwork/LogicFile`). */
 export interface RoadSignals {
   /** The road file, absolute, or the package entry that holds it (`foundRoadName`). */
   file: string;
   signalIds: ReadonlySet<string>;
+  /** The ids of its roads of left-hand traffic (`rule="LHT"`), where Insert into Main mirrors a module's placement. */
+  leftHandRoads: ReadonlySet<string>;
 }
 
 /**
@@ -60,7 +62,7 @@ async function readRoadSignals(store: ScenarioStore, road: RoadFileLookup, file:
   if (cached?.hash === hash) return cached.signals;
   const network = openDriveSignals(decodeUtf8(bytes));
   // Not an OpenDRIVE file, or one with no roads: nothing to resolve a signal against.
-  const signals = network.hasRoads ? { file, signalIds: network.signalIds } : undefined;
+  const signals = network.hasRoads ? { file, signalIds: network.signalIds, leftHandRoads: network.leftHandRoads } : undefined;
   summaries.delete(file);
   if (signals) summaries.set(file, { hash, signals });
   while (summaries.size > SUMMARY_LIMIT) summaries.delete(summaries.keys().next().value as string);
