@@ -12,10 +12,12 @@ import {
   CODE_CACHE_SUFFIX,
   COMMAND_BUNDLES,
   commandBundle,
+  EXPORT_VALUE_OPTIONS,
   loadBundle,
   PLAIN_EXPORT_CACHE_SUFFIX,
 } from '../../server/src/cli/start';
 import { warmingRuns } from '../../scripts/cli-code-cache.mjs';
+import { EXPORT_OPTIONS } from '../../server/src/cli/export';
 import { repoRoot } from '../support/paths';
 import { temporaryFolder } from '../support/temporaryDirectory';
 
@@ -62,6 +64,13 @@ describe("cli: the program's entry runs a command's own bundle", function () {
       cacheFileFor(commandBundle(COMMAND_BUNDLES.flatten), ['flatten', path.join(examples, 'crossing.xosc')]),
       'cli-flatten.js' + CODE_CACHE_SUFFIX,
     );
+  });
+
+  it("the entry knows export's options that take a value, as export declares them (a word after one is no input)", () => {
+    const takingValue = Object.entries(EXPORT_OPTIONS).flatMap(([name, option]) =>
+      option.type === 'string' ? [`--${name}`, ...('short' in option ? [`-${option.short}`] : [])] : [],
+    );
+    assert.deepEqual([...EXPORT_VALUE_OPTIONS].sort(), takingValue.sort());
   });
 
   it('without the command bundles (the .vsix ships only the whole CLI) the same command gives the same output', () => {

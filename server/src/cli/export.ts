@@ -54,21 +54,24 @@ interface ExportArguments {
   options: CarlaExportOptions;
 }
 
+/** export's options (cli/start.ts's EXPORT_VALUE_OPTIONS names those that take a value, held equal by a test). */
+export const EXPORT_OPTIONS = {
+  target: { type: 'string' },
+  output: { type: 'string', short: 'o' },
+  report: { type: 'string' },
+  ...CARLA_OPTION,
+  blueprints: { type: 'string' },
+  road: { type: 'string' },
+  'road-path': { type: 'string', multiple: true },
+  ego: { type: 'string' },
+  force: { type: 'boolean', default: false },
+  index: { type: 'string' },
+  'scenario-path': { type: 'string', multiple: true },
+  quiet: { type: 'boolean', short: 'q', default: false },
+} as const;
+
 function parse(argv: string[]): ExportArguments {
-  const { values, positionals } = parseCommandLine(argv, {
-    target: { type: 'string' },
-    output: { type: 'string', short: 'o' },
-    report: { type: 'string' },
-    ...CARLA_OPTION,
-    blueprints: { type: 'string' },
-    road: { type: 'string' },
-    'road-path': { type: 'string', multiple: true },
-    ego: { type: 'string' },
-    force: { type: 'boolean', default: false },
-    index: { type: 'string' },
-    'scenario-path': { type: 'string', multiple: true },
-    quiet: { type: 'boolean', short: 'q', default: false },
-  });
+  const { values, positionals } = parseCommandLine(argv, EXPORT_OPTIONS);
   if (positionals.length !== 1) throw new UsageError('export takes one input');
   if (values.target === undefined) throw new UsageError('export needs --target carla');
   if (values.target !== 'carla') throw new UsageError(`--target takes carla, not '${values.target}'`);

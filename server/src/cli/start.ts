@@ -85,8 +85,8 @@ export function bundleFor(folder: string, argv: readonly string[]): string {
  */
 export const PLAIN_EXPORT_CACHE_SUFFIX = '.plain' + CODE_CACHE_SUFFIX;
 
-/** Export's options that take a value: the word after them is no input. */
-const EXPORT_VALUE_OPTIONS: ReadonlySet<string> = new Set([
+/** Export's options that take a value (those of cli/export.ts EXPORT_OPTIONS, not imported here: the entry loads no command): the word after them is no input. */
+export const EXPORT_VALUE_OPTIONS: ReadonlySet<string> = new Set([
   '--target',
   '-o',
   '--output',

@@ -756,7 +756,10 @@ export function collisionSentence(
   }
   if (first.size === 0) return '';
   const said = [...first.values()].slice(0, NAMED_COLLISIONS).map(({ entities, time }) => {
-    const [a, b] = entities.map((name) => (declaredAt(name) ? `${name} (${declaredAt(name)})` : name));
+    const [a, b] = entities.map((name) => {
+      const place = declaredAt(name);
+      return place ? `${name} (${place})` : name;
+    });
     return `${a} and ${b} collide${time === undefined ? ' at the start' : ` at t=${trimmed(time)} s`}`;
   });
   const more =
