@@ -29,7 +29,17 @@ import { EntityState, prepareScenario, Simulation, SimulationLoadError, Simulati
 import { STORYBOARD_EVENT, type StoryboardEventBody } from '../../../common/src/trace';
 import { describeEvent, traceRecord } from './trace';
 import { type SessionPage, type SessionProgress } from './progressPage';
-import { evaluateWatch, hitConditionMet, timeBreakpoint, WatchContext, WatchError, WatchValue } from './watchExpression';
+import {
+  evaluateWatch,
+  hitConditionMet,
+  settled,
+  shownFixed,
+  shownValue,
+  timeBreakpoint,
+  WatchContext,
+  WatchError,
+  WatchValue,
+} from './watchExpression';
 
 /*
  * The Debug Adapter Protocol over a Simulation (simulation.ts): breakpoints on storyboard element lines, conditions
@@ -110,9 +120,7 @@ function mainRef(input: string): SourceRef {
   return input.toLowerCase().endsWith('.mosc') ? childRef(diskRef(input), 'main.xosc') : diskRef(input);
 }
 
-function fixed(value: number | undefined, digits = 2): string {
-  return value === undefined || !Number.isFinite(value) ? '—' : value.toFixed(digits);
-}
+const fixed = shownFixed;
 
 function entityFields(entity: EntityState): Record<string, number> {
   return {
@@ -762,7 +770,7 @@ export class ScenarioDebugSession extends DebugSession {
   private sendStoryboard(events: readonly StoryboardEvent[]): void {
     const body: StoryboardEventBody = {
       records: events.map((event) => traceRecord(event, undefined, this.simulation?.scenario.map)),
-      time: Number((this.simulation?.time ?? 0).toFixed(6)),
+      time: settled(this.simulation?.time ?? 0),
       run: this.runNumber,
     };
     this.sendEvent(new Event(STORYBOARD_EVENT, body));
@@ -934,7 +942,7 @@ export class ScenarioDebugSession extends DebugSession {
       const fields = entityFields(entity);
       const children = Object.entries(fields)
         .filter(([name]) => name !== 'heading')
-        .map(([name, value]) => ({ name, value: Number.isInteger(value) ? String(value) : value.toFixed(3), variablesReference: 0 }));
+        .map(([name, value]) => ({ name, value: Number.isInteger(value) ? String(value) : fixed(value, 3), variablesReference: 0 }));
       return {
         name: entity.name,
         value: `x ${fixed(entity.x)}, y ${fixed(entity.y)}, speed ${fixed(entity.speed)} m/s, lane ${entity.laneId}`,
@@ -979,7 +987,7 @@ export class ScenarioDebugSession extends DebugSession {
       try {
         const value = evaluateWatch(expression, this.watchContext(simulation));
         response.body = {
-          result: typeof value === 'number' && !Number.isInteger(value) ? String(Number(value.toFixed(6))) : String(value),
+          result: shownValue(value),
           variablesReference: 0,
         };
         this.sendResponse(response);

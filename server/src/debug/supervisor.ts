@@ -10,6 +10,7 @@ import {
   readProgressPage,
   type SessionProgress,
 } from './progressPage';
+import { shownFixed } from './watchExpression';
 
 /*
  * The debug adapter's outer process (dist/debugAdapter.js as the editor starts it): it runs the session (adapter.ts),
@@ -94,8 +95,8 @@ export function crashMessage(
   const last =
     progress === undefined
       ? ''
-      : ` (the last it reported: ${progress.what}${reached !== undefined && progress.time.toFixed(2) !== reached.toFixed(2) ? ` at ${progress.time.toFixed(2)} s` : ''})`;
-  const when = time === undefined ? 'before its first simulation step' : `at ${time.toFixed(2)} s of simulated time${last}`;
+      : ` (the last it reported: ${progress.what}${reached !== undefined && shownFixed(progress.time) !== shownFixed(reached) ? ` at ${shownFixed(progress.time)} s` : ''})`;
+  const when = time === undefined ? 'before its first simulation step' : `at ${shownFixed(time)} s of simulated time${last}`;
   return (
     `The debug session of ${program ? path.basename(program) : 'the scenario'} ended: esmini's process ${how} ${when}.` +
     `${reason ? ` esmini: ${reason}.` : ''} The editor is unaffected; the Debug Console keeps the run's last lines.`

@@ -20,6 +20,21 @@ export interface WatchContext {
 
 export class WatchError extends Error {}
 
+/** A run's number as the user reads it: settled to 6 digits first, so a sum of 0.0001 s steps (0.44499999…) reads 0.445 in every view. */
+export function settled(value: number): number {
+  return Number(value.toFixed(6));
+}
+
+/** A run's number in fixed digits ('—' when there is none), rounded from its settled value, as an evaluation of it shows it. */
+export function shownFixed(value: number | undefined, digits = 2): string {
+  return value === undefined || !Number.isFinite(value) ? '—' : settled(value).toFixed(digits);
+}
+
+/** An evaluation's result as Watch, hover and the Debug Console show it. */
+export function shownValue(value: WatchValue): string {
+  return typeof value === 'number' && !Number.isInteger(value) ? String(settled(value)) : String(value);
+}
+
 type Token =
   { kind: 'number'; value: number } | { kind: 'string'; value: string } | { kind: 'name'; value: string } | { kind: 'op'; value: string };
 
