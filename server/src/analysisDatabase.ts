@@ -13,6 +13,7 @@ interface CachedAnalysis {
   generation: number;
   result: Promise<AnalysisResult> | undefined;
   problems: Problem[];
+  lookedUp: string[];
 }
 
 /** What the database derives its state from: the workspace's inputs, read when asked (a new store on settings or folders). */
@@ -163,12 +164,12 @@ export class AnalysisDatabase {
     const cached = this.analysisResults.get(id);
     if (cached && cached.generation === this.generation) {
       if (cached.result) return cached.result;
-      const problems = cached.problems;
+      const { problems, lookedUp } = cached;
       // The source as the shared sources still hold it, or read again: the same text gives the same source.
-      return this.source(ref).then((source) => ({ problems, source }));
+      return this.source(ref).then((source) => ({ problems, source, lookedUp }));
     }
     const result = this.flattener().analyze(ref);
-    const fresh: CachedAnalysis = { generation: this.generation, result, problems: [] };
+    const fresh: CachedAnalysis = { generation: this.generation, result, problems: [], lookedUp: [] };
     this.analysisResults.set(id, fresh);
     // A file not open must not keep its parse tree past the bound of the shared sources.
     if (!this.inputs.documents.get(id))
@@ -176,6 +177,7 @@ export class AnalysisDatabase {
         (analysis) => {
           if (this.analysisResults.get(id) !== fresh || this.inputs.documents.get(id)) return;
           fresh.problems = analysis.problems;
+          fresh.lookedUp = analysis.lookedUp;
           fresh.result = undefined;
         },
         () => undefined,

@@ -2,7 +2,9 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { Location } from 'vscode-languageserver/node';
+import { Diagnostic, Location } from 'vscode-languageserver/node';
+import { problemCodeOf } from '../support/diagnostics';
+import { importedCatalogController } from '../support/fixtures';
 import { positionAt } from '../support/cursor';
 import { STRAIGHT_ROAD } from '../support/roads';
 import { twoCatalogs } from '../support/twoCatalogs';
@@ -150,5 +152,74 @@ describe('the folders outside the workspace that get watchers', () => {
     assert.deepEqual(foldersToWatch(read, roots, 1), ['/a/roads']);
     // A sibling whose name starts like a root is not inside it.
     assert.deepEqual(foldersToWatch(['/work/project-old'], roots), ['/work/project-old']);
+  });
+});
+
+describe("language server: an imported group's controller File that lies only beside its file (issue 27)", function () {
+  this.timeout(60_000);
+
+  it('is warned of live at the CatalogReference, with a watcher for the path, and the warning goes once the file lies beside the main', async () => {
+    const root = temporaryWorkspace({ 'straight.xodr': STRAIGHT_ROAD });
+    const { module } = importedCatalogController(root, path.join(root, 'straight.xodr'), 'modules');
+    fs.mkdirSync(path.join(root, 'modules', 'inputs'));
+    fs.writeFileSync(path.join(root, 'modules', 'inputs', 'acc.cfg'), '');
+    const client = await TestClient.start({ root, pullDiagnostics: true });
+    try {
+      await client.indexed();
+      await client.openFile(path.join(root, 'main.xosc'));
+      const moduleUri = await client.openFile(module);
+      const warningsOf = async () =>
+        (await client.request<{ items: Diagnostic[] }>('textDocument/diagnostic', { textDocument: { uri: moduleUri } })).items.filter(
+          (each) => problemCodeOf(each) === 'file-path',
+        );
+      const before = await warningsOf();
+      const message = String(before[0]?.message);
+      assert.equal(before.length, 1, JSON.stringify(before));
+      assert.ok(
+        message.startsWith(
+          `catalog entry 'acc' names its controller File 'inputs/acc.cfg', which esmini looks up from the working folder, then from the folder of ` +
+            `the scenario that uses the entry: from the folder of ${path.join(root, 'main.xosc')}, which imports this group, it names ` +
+            `${path.join(root, 'inputs', 'acc.cfg')}, which does not exist; the file lies beside this file (${path.join(root, 'modules', 'inputs', 'acc.cfg')})`,
+        ),
+        message,
+      );
+      const line = fs
+        .readFileSync(module, 'utf8')
+        .split('\n')
+        .findIndex((text) => text.includes('entryName="acc"'));
+      assert.equal(before[0].range.start.line, line);
+      const patterns = (registration: { registerOptions?: unknown }) =>
+        (registration.registerOptions as { watchers: { globPattern: string | { baseUri: string; pattern: string } }[] }).watchers.map(
+          (watcher) => watcher.globPattern,
+        );
+      await client.until(
+        () =>
+          client.registrations.find(
+            (registration) =>
+              registration.method === 'workspace/didChangeWatchedFiles' &&
+              patterns(registration).some(
+                (pattern) => typeof pattern !== 'string' && pattern.baseUri === fileUri(root) && pattern.pattern === 'inputs/acc.cfg',
+              ),
+          ),
+        "a watcher for the path esmini reads the File from, which the workspace's registration of scenarios does not cover",
+      );
+
+      fs.mkdirSync(path.join(root, 'inputs'));
+      fs.writeFileSync(path.join(root, 'inputs', 'acc.cfg'), '');
+      await client.connection.sendNotification('workspace/didChangeWatchedFiles', {
+        changes: [{ uri: fileUri(path.join(root, 'inputs', 'acc.cfg')), type: 1 }],
+      });
+      // The notification is handled on its own turn: pulled until the analysis after it answers.
+      const deadline = Date.now() + 20_000;
+      let after = await warningsOf();
+      while (after.length > 0 && Date.now() < deadline) {
+        await new Promise((resolve) => setTimeout(resolve, 50));
+        after = await warningsOf();
+      }
+      assert.deepEqual(after, [], 'no warning once the File lies beside the main');
+    } finally {
+      await client.stop();
+      fs.rmSync(root, { recursive: true, force: true });
+    }
   });
 });

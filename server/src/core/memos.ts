@@ -271,6 +271,14 @@ export const CORE_MEMOS = {
     bound: WITH_KEY,
     invalidated: 'never: a new model is a new key',
   },
+  controllerFileUses: {
+    where: '`importedControllerFileProblems` (`core/flatten/rebase.ts`)',
+    key: "an imported group (in its file's flattened model)",
+    holds:
+      "the CatalogReferences inside it to a Controller entry whose File is a relative path, each where it was written, with the path's value, so an analysis of the importing main looks up only whether that path names a file from the main's folder (the store's kinds, `fileBytes`) on each edit",
+    bound: WITH_KEY,
+    invalidated: 'never: a changed imported file (or one it imports) is read again, a new model and a new key',
+  },
   namedElements: {
     where: '`core/modularize/simpleScenario.ts`',
     key: 'a parse',

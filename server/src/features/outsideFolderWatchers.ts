@@ -28,6 +28,29 @@ export function foldersToWatch(read: Iterable<string>, roots: readonly string[],
   return [...outside].sort().slice(0, limit);
 }
 
+/**
+ * The watchers for files an analysis looked up outside its dependencies (an imported group's controller File, whose
+ * existence decides a warning): any kind of file, which the workspace's registration of scenarios, packages and road
+ * files does not cover. Each is watched from the nearest watched root holding it (a folder that exists, where the
+ * file's own folder may not yet), else from its own folder; sorted, at most `limit`.
+ */
+export function filesToWatch(
+  files: Iterable<string>,
+  roots: readonly string[],
+  limit = MAX_OUTSIDE_FOLDERS,
+): { base: string; pattern: string }[] {
+  const watched = new Map<string, { base: string; pattern: string }>();
+  for (const file of files) {
+    const root = roots.find((each) => insideFolders(file, [each]));
+    const base = root ?? path.dirname(file);
+    watched.set(file, { base, pattern: path.relative(base, file).split(path.sep).join('/') });
+  }
+  return [...watched.keys()]
+    .sort()
+    .slice(0, limit)
+    .map((file) => watched.get(file) as { base: string; pattern: string });
+}
+
 /** Quiet time after the last analysis before the watched folders are worked out again: typing is not held up by it. */
 const UPDATE_DELAY_MS = 300;
 
@@ -39,7 +62,7 @@ const UPDATE_DELAY_MS = 300;
  * as a whole when the set of folders changes; each event reaches `workspace/didChangeWatchedFiles` as any other.
  */
 export class OutsideFolderWatchers {
-  /** The folders watched now (or being registered), sorted. */
+  /** What is watched now (or being registered): each folder's and each file's pattern, sorted. */
   private watched: string[] = [];
   /** Whether the client registers watchers dynamically with relative patterns; set by `initialize`. */
   supported = false;
@@ -66,22 +89,32 @@ export class OutsideFolderWatchers {
     this.timer.unref();
   }
 
-  /** Watches exactly the folders outside the watched roots that the open documents' analyses read from. */
+  /** Watches exactly the folders outside the watched roots that the open documents' analyses read from, and the files they looked up. */
   private async update(): Promise<void> {
     if (this.disposed) return;
     const read = new Set<string>();
-    for (const [, open] of this.workspace.documents)
-      for (const folder of foldersRead((await this.workspace.analyze(open.ref)).source)) read.add(folder);
+    const lookedUp = new Set<string>();
+    for (const [, open] of this.workspace.documents) {
+      const analysis = await this.workspace.analyze(open.ref);
+      for (const folder of foldersRead(analysis.source)) read.add(folder);
+      for (const file of analysis.lookedUp) lookedUp.add(file);
+    }
     const folders = foldersToWatch(read, this.workspace.watchedRoots);
-    if (folders.length === this.watched.length && folders.every((folder, index) => folder === this.watched[index])) return;
-    this.watched = folders;
+    const files = filesToWatch(lookedUp, this.workspace.watchedRoots);
+    const watched = [
+      ...folders.map((folder) => `${folder}/${OUTSIDE_FOLDER_PATTERN}`),
+      ...files.map((file) => `${file.base}/${file.pattern}`),
+    ];
+    if (watched.length === this.watched.length && watched.every((each, index) => each === this.watched[index])) return;
+    this.watched = watched;
     const previous = await this.registration;
     previous?.dispose();
-    const watchers: FileSystemWatcher[] = folders.map((folder) => ({
-      globPattern: { baseUri: URI.file(folder).toString(), pattern: OUTSIDE_FOLDER_PATTERN },
-    }));
+    const watchers: FileSystemWatcher[] = [
+      ...folders.map((folder) => ({ globPattern: { baseUri: URI.file(folder).toString(), pattern: OUTSIDE_FOLDER_PATTERN } })),
+      ...files.map((file) => ({ globPattern: { baseUri: URI.file(file.base).toString(), pattern: file.pattern } })),
+    ];
     this.registration =
-      folders.length === 0
+      watchers.length === 0
         ? Promise.resolve(undefined)
         : this.connection.client.register(DidChangeWatchedFilesNotification.type, { watchers }).catch((error: unknown) => {
             // Registered again on the next update rather than believed watched.

@@ -17,7 +17,7 @@ import { duplicateOuterGroupProblems, link } from './link';
 import { outputSchemaProblems } from './outputSchema';
 import { referenceChecks } from './referenceChecks';
 import { problemAt } from './report';
-import { pathBaseOf, rebaseFlattened } from './rebase';
+import { importedControllerFileProblems, pathBaseOf, rebaseFlattened } from './rebase';
 import { render } from './render';
 import {
   AnalysisResult,
@@ -77,7 +77,12 @@ export class Flattener {
   async analyze(main: SourceRef): Promise<AnalysisResult> {
     const source = await this.source(main, []);
     const { entity, override } = referenceChecks(source, this.schema.version);
-    return { problems: uniqueProblems([...source.allProblems, ...entity, ...override]), source };
+    const controllerFiles = await importedControllerFileProblems(source, this.store);
+    return {
+      problems: uniqueProblems([...source.allProblems, ...entity, ...override, ...controllerFiles.problems]),
+      source,
+      lookedUp: controllerFiles.lookedUp,
+    };
   }
 
   /** Flattens the scenario `main` (a `main.xosc` on disk or inside a package) into plain OpenSCENARIO. */

@@ -2,6 +2,8 @@ import * as path from 'node:path';
 import { Evaluator, semanticModelOf } from '../semantics';
 import { ScenarioModel } from '../model';
 import { Problem, ZERO_RANGE } from '../problems';
+import type { Range } from '../text';
+import { coreMemo } from '../memos';
 import { ProblemWording } from '../diagnostics';
 import {
   catalogControllerFileWording,
@@ -189,14 +191,55 @@ export async function rebasePaths(request: RebaseRequest): Promise<PathRebase> {
   return result;
 }
 
+/** A CatalogReference, where it was written, to a Controller entry whose File is a relative path (as written and as evaluated). */
+interface ControllerFileUse {
+  /** The file that wrote the CatalogReference. */
+  origin: FlatSource;
+  entry: string;
+  /** The File's path quoted as messages name it: as written, with the value a parameter gives it. */
+  named: string;
+  value: string;
+  range: Range;
+}
+
+/**
+ * The controller File a CatalogReference (`origin`, where it was written) uses, when it is a relative path written as it
+ * stands or through the entry's parameter (the value the reference assigns, else the entry's default).
+ */
+function controllerFileUse(origin: { source: FlatSource; element: XmlElement }): ControllerFileUse | undefined {
+  const semantics = origin.source.semantics;
+  const resolution = semantics?.catalogs.references.find((each) => each.reference.element === origin.element);
+  const entry = resolution?.entry;
+  if (!semantics || !resolution || entry?.element.name !== 'Controller') return undefined;
+  const reference = resolution.reference;
+  const file = entry.element.children.find((child) => child.name === 'Properties')?.children.find((child) => child.name === 'File');
+  const written = file?.attributes.find((each) => each.name === 'filepath')?.value.trim();
+  const parameter = written ? /^\$([A-Za-z_][\w.]*)$/.exec(written)?.[1] : undefined;
+  const assignment = reference.assignments.find((each) => each.parameterRef?.value.replace(/^\$/, '') === parameter);
+  const value =
+    parameter === undefined
+      ? written
+      : assignment
+        ? semantics.evaluator.textOf(assignment.element, assignment.valueAttribute)?.trim()
+        : declaredValue(entry.element, parameter);
+  if (!written || !value || value.includes('$') || path.isAbsolute(value)) return undefined;
+  const at = reference.entryNameAttribute;
+  return {
+    origin: origin.source,
+    entry: entry.name,
+    named: value === written ? `'${written}'` : `'${written}' ('${value}')`,
+    value,
+    range: at ? semantics.model.document.lines.range(at.valueStart, at.valueEnd) : ZERO_RANGE,
+  };
+}
+
 /**
  * The controller entries the output's CatalogReferences use (the main's own and those of the groups it imports, each found
- * where it was written) whose File is a relative path written as it stands or through the entry's parameter: esmini looks it
- * up from the folder of the scenario it runs (ScenarioReader.cpp parseOSCObjectController), never the catalog's, and the
- * output written elsewhere keeps the reference, not the entry, so a file the path names from the main's folder (where the
- * output beside the main, and a run, reach it) is warned of at the reference, unless a run hands it (`handed`:
- * esmini/controllerFiles.ts). A file the path names only from the folder of the imported file that uses the entry is
- * reached by no output nor run: that is warned of wherever the output goes.
+ * where it was written) whose File is a relative path: esmini looks it up from the folder of the scenario it runs
+ * (ScenarioReader.cpp parseOSCObjectController), never the catalog's, and the output written elsewhere keeps the
+ * reference, not the entry, so a file the path names from the main's folder (where the output beside the main, and a run,
+ * reach it) is warned of at the reference, unless a run hands it (`handed`: esmini/controllerFiles.ts). A file the path
+ * names only from the folder of an imported file is the analysis's warning (`importedControllerFileProblems`).
  */
 async function catalogControllerFileProblems(
   source: FlatSource,
@@ -207,8 +250,7 @@ async function catalogControllerFileProblems(
   handed: boolean,
 ): Promise<Problem[]> {
   const base = path.resolve(pathBaseOf(source.ref));
-  if (!model.document.root) return [];
-  const elsewhere = !handed && outputDirectory !== base;
+  if (!model.document.root || handed || outputDirectory === base) return [];
   const problems: Problem[] = [];
   // A group imported twice is copied twice: its reference is warned of once.
   const seen = new Set<XmlElement>();
@@ -217,41 +259,79 @@ async function catalogControllerFileProblems(
     const origin = originFor(element);
     if (seen.has(origin.element)) continue;
     seen.add(origin.element);
-    const semantics = origin.source.semantics;
-    const resolution = semantics?.catalogs.references.find((each) => each.reference.element === origin.element);
-    const entry = resolution?.entry;
-    if (!semantics || !resolution || entry?.element.name !== 'Controller') continue;
-    const reference = resolution.reference;
-    const file = entry.element.children.find((child) => child.name === 'Properties')?.children.find((child) => child.name === 'File');
-    const written = file?.attributes.find((each) => each.name === 'filepath')?.value.trim();
-    // Named through the entry's parameter: the value the reference assigns, else the entry's default.
-    const parameter = written ? /^\$([A-Za-z_][\w.]*)$/.exec(written)?.[1] : undefined;
-    const assignment = reference.assignments.find((each) => each.parameterRef?.value.replace(/^\$/, '') === parameter);
-    const value =
-      parameter === undefined
-        ? written
-        : assignment
-          ? semantics.evaluator.textOf(assignment.element, assignment.valueAttribute)?.trim()
-          : declaredValue(entry.element, parameter);
-    if (!written || !value || value.includes('$') || path.isAbsolute(value)) continue;
-    const disk = path.resolve(base, value);
-    const found = (await store.kindOf(disk)) === 'file';
+    const use = controllerFileUse(origin);
+    if (!use) continue;
+    const disk = path.resolve(base, use.value);
+    if ((await store.kindOf(disk)) !== 'file') continue;
     // A group imported from another file: its reference is where to change it, the main's folder where the path is read from.
     const from = origin.source === source ? undefined : displayRef(source.ref, undefined);
-    const beside = found || from === undefined ? undefined : await besideImportingFile(store, origin.source.ref, value);
-    if (!(found && elsewhere) && beside === undefined) continue;
-    const at = reference.entryNameAttribute;
-    const range = at ? semantics.model.document.lines.range(at.valueStart, at.valueEnd) : ZERO_RANGE;
-    const named = value === written ? `'${written}'` : `'${written}' ('${value}')`;
     problems.push({
-      source: origin.source.ref,
-      range,
-      ...(beside !== undefined && from !== undefined
-        ? importedControllerFileWording(entry.name, named, from, disk, beside)
-        : catalogControllerFileWording(entry.name, named, disk, outputDirectory, from)),
+      source: use.origin.ref,
+      range: use.range,
+      ...catalogControllerFileWording(use.entry, use.named, disk, outputDirectory, from),
     });
   }
   return problems;
+}
+
+/** The controller File uses of the CatalogReferences inside an imported group (its copies of nested imports found where they were written). */
+const controllerFileUses = coreMemo<XmlElement, ControllerFileUse[]>('controllerFileUses');
+
+function controllerFileUsesIn(source: FlatSource, group: XmlElement): ControllerFileUse[] {
+  let uses = controllerFileUses.get(group);
+  if (!uses) {
+    uses = [];
+    for (const element of selfAndDescendants(group)) {
+      if (element.name !== 'CatalogReference') continue;
+      const use = controllerFileUse(originOf(source, element));
+      if (use) uses.push(use);
+    }
+    controllerFileUses.set(group, uses);
+  }
+  return uses;
+}
+
+/**
+ * A catalog controller entry's relative File used from a group that `source` (the main) imports from a file in another
+ * folder or package: esmini reads it from the working folder, then from the main's folder, so a File that lies only beside
+ * the imported file (or inside its package) is never found and the flattened scenario runs without it, whatever the output.
+ * Warned of at the group's CatalogReference, by every analysis (the editor's too), without rendering the main. `lookedUp`:
+ * each path whose existence decides a warning, for the editor to watch. Existence is asked of the store, which remembers
+ * kinds until a file event (`fileBytes`).
+ */
+export async function importedControllerFileProblems(
+  source: FlatSource,
+  store: ScenarioStore,
+): Promise<{ problems: Problem[]; lookedUp: string[] }> {
+  const base = path.resolve(pathBaseOf(source.ref));
+  const problems: Problem[] = [];
+  const lookedUp: string[] = [];
+  // A group imported twice is looked at once, and so is a reference copied into two groups.
+  const seen = new Set<ControllerFileUse>();
+  const groups = new Set<XmlElement>();
+  for (const link of source.links) {
+    if (!link.source) continue;
+    for (const group of link.groups) {
+      if (!group.target || groups.has(group.target.element)) continue;
+      groups.add(group.target.element);
+      for (const use of controllerFileUsesIn(link.source, group.target.element)) {
+        if (seen.has(use) || use.origin === source) continue;
+        seen.add(use);
+        const disk = path.resolve(base, use.value);
+        lookedUp.push(disk);
+        if (use.origin.ref.entries.length === 0) lookedUp.push(path.resolve(pathBaseOf(use.origin.ref), use.value));
+        if ((await store.kindOf(disk)) === 'file') continue;
+        const beside = await besideImportingFile(store, use.origin.ref, use.value);
+        if (beside === undefined) continue;
+        problems.push({
+          source: use.origin.ref,
+          range: use.range,
+          ...importedControllerFileWording(use.entry, use.named, displayRef(source.ref, undefined), disk, beside),
+        });
+      }
+    }
+  }
+  return { problems, lookedUp: [...new Set(lookedUp)] };
 }
 
 /** The file a relative path names from the folder of `ref` (inside its package, for a packaged file), when one lies there. */

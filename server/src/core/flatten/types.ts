@@ -167,6 +167,8 @@ export interface FlattenOptions {
 export interface AnalysisResult {
   problems: Problem[];
   source: FlatSource;
+  /** Files outside its dependencies whose existence decided a problem (an imported group's controller File): an editor watches them. */
+  lookedUp: string[];
 }
 
 /** A file stored in a package that an output names: written beside the output (in `<name>.files/`) so that the output runs. */
