@@ -334,7 +334,7 @@ const crossing = (actor, length) => `<RoutingAction>
  * @typedef {{
  *   name: string, title: string, group: string, summary: string, actor: string, groupName: string,
  *   entities: string[], init: string[], parameters: Parameter[], maneuver: string, stopAt: number, otherActors?: string[],
- *   road?: string,
+ *   road?: string, queue?: 'enters' | 'slower',
  *   actorName: string, keys: Record<string, string>,
  * }} Module
  */
@@ -343,6 +343,8 @@ const crossing = (actor, length) => `<RoutingAction>
 export const MODULES = [
   {
     name: 'cut-in',
+    // Its car enters the ego's lane ahead of it: a slower car inserted later goes behind it (docs/library.md).
+    queue: 'enters',
     title: 'Cut-in',
     group: 'Vehicles ahead',
     summary:
@@ -389,6 +391,8 @@ export const MODULES = [
   },
   {
     name: 'lead-brake',
+    // Slower than the ego ahead in its lane: behind a car that enters the lane, which would run into it braking.
+    queue: 'slower',
     title: 'Lead vehicle braking',
     group: 'Vehicles ahead',
     summary:
@@ -488,6 +492,8 @@ export const MODULES = [
   },
   {
     name: 'slow-target',
+    // Slower than the ego ahead in its lane: behind a car that enters the lane, which would run into it.
+    queue: 'slower',
     title: 'Stationary or slow target ahead',
     group: 'Vehicles ahead',
     summary: "A vehicle ahead in the ego's lane stands still or drives slowly at a set speed from the start, for the ego to come up to.",
@@ -610,6 +616,8 @@ export const MODULES = [
   },
   {
     name: 'cyclist-ahead',
+    // Slower than the ego ahead in its lane: behind a car that enters the lane, which would run into it.
+    queue: 'slower',
     title: 'Cyclist ahead',
     group: 'Vulnerable road users',
     summary: "A cyclist rides ahead in the ego's lane, near its right edge, at a set speed from the start, for the ego to come up to.",
@@ -1066,6 +1074,8 @@ export const MODULES = [
   },
   {
     name: 'highway-merge',
+    // Its car enters the ego's lane ahead of it: a slower car inserted later goes behind it (docs/library.md).
+    queue: 'enters',
     title: 'Highway merge',
     group: 'Vehicles beside',
     summary:
@@ -1321,7 +1331,7 @@ title: ${module.title}
 group: ${module.group}
 maneuverGroup: ${module.groupName}
 actor: ${module.actorName}: ${module.actor}
-summary: ${module.summary}
+${module.queue ? `queue: ${module.queue}\n` : ''}summary: ${module.summary}
 ${parameters.join('\n')}
 -->`;
 }

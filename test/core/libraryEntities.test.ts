@@ -3,6 +3,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { LibraryModule, readModule } from '../../server/src/core/library';
 import { entityOffers, newEntityChanges, TextChange, TrafficRules } from '../../server/src/core/libraryEntities';
+import { insertModuleGroup } from '../../server/src/core/libraryInsert';
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { parseXml } from '../../server/src/core/xml';
 import { checkCleanAndFlatten } from '../support/cliChecks';
@@ -256,6 +257,69 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
     assert.match(
       queue.added[0],
       /^jam1 \(Vehicle, 130 m ahead of Ego, lane -1, 0 m\/s \(standing: the example's ego drives 25 m\/s, Ego 10; a faster Ego gives the example's closing speed\)\)$/,
+    );
+  });
+
+  it("a slower car in the ego's lane inserted after a car that enters that lane ahead of the ego goes behind it, no faster: a scripted car never brakes for the one ahead", () => {
+    const cutIn = builtIn('cut-in');
+    const lead = builtIn('lead-brake');
+    assert.equal(cutIn.module.queue, 'enters');
+    assert.equal(lead.module.queue, 'slower');
+    const entering = new Set(['cut-in']);
+    /** The main with a cut-in inserted (its car `adversary` at `s` on lane -2, at `speed`), then a lead brake; the lead's place and what it says. */
+    const composed = (s: number, speed: number, set: ReadonlySet<string> | undefined = entering) => {
+      let text = newMain();
+      const car = newEntityChanges(text, cutIn.module, cutIn.example, { adversary: 'adversary' }, { adversary: 'adversary', ego: 'Ego' });
+      text = applied(text, car.changes)
+        .replace('laneId="-2" s="45"', `laneId="-2" s="${s}"`)
+        .replace('<AbsoluteTargetSpeed value="7"/>', `<AbsoluteTargetSpeed value="${speed}"/>`);
+      const group = insertModuleGroup(text, cutIn.module, { players: { adversary: 'adversary', ego: 'Ego' }, values: car.values });
+      text = text.slice(0, group.offset) + group.text + text.slice(group.offset);
+      const result = newEntityChanges(
+        text,
+        lead.module,
+        lead.example,
+        { lead: 'lead' },
+        { lead: 'lead', ego: 'Ego' },
+        undefined,
+        undefined,
+        set,
+      );
+      const placed =
+        /<Private entityRef="lead">[\s\S]*?<LanePosition roadId="0" laneId="(-?\d+)" s="([\d.]+)"[\s\S]*?<AbsoluteTargetSpeed value="([^"]+)"\/>/.exec(
+          applied(text, result.changes),
+        );
+      return { placed: placed?.slice(1), added: result.added };
+    };
+    // The example's lead: 34.5 m ahead of its ego, 2 m/s slower (16 and 14 m/s); the cut-in's car here 35 m ahead at 7 m/s.
+    const behind = composed(45, 7);
+    assert.deepEqual(behind.placed, ['-1', '44.5', '5']);
+    assert.deepEqual(behind.added, [
+      'lead (Vehicle, 34.5 m ahead of Ego, lane -1, 5 m/s (behind adversary, which enters the lane of Ego ahead of it: 2 m/s slower, so that adversary cuts in ahead of it and never runs into it))',
+    ]);
+    // A cut-in car nearer than the example's lead: the lead level with it, not ahead.
+    assert.deepEqual(composed(30, 7).placed, ['-1', '30', '5']);
+    // One that is slower than the lead would be 2 m/s below it: no faster than it (standing behind a standing one).
+    assert.deepEqual(composed(45, 1).placed, ['-1', '44.5', '0']);
+    // No module known to enter the lane (a library without the field): placed as if alone, 2 m/s slower than the ego.
+    assert.deepEqual(composed(45, 7, new Set()).placed, ['-1', '44.5', '8']);
+    // A car that enters the lane behind the ego is no member: the lead as if alone.
+    assert.deepEqual(composed(5, 7).placed, ['-1', '44.5', '8']);
+  });
+
+  it("a doc block's queue field is 'enters' or 'slower'; another value is reported on its line and the module left out", () => {
+    const file = path.join(library.folder, 'cut-in.xosc');
+    const text = fs.readFileSync(file, 'utf8').replace('queue: enters', 'queue: ahead');
+    const { module, problems } = readModule(text, file, library);
+    assert.equal(module, undefined);
+    assert.deepEqual(
+      problems.map((problem) => [problem.line, problem.message]),
+      [
+        [
+          8,
+          "'queue: ahead' is neither 'enters' (the actor enters the ego's lane ahead of it) nor 'slower' (it drives slower ahead in that lane)",
+        ],
+      ],
     );
   });
 

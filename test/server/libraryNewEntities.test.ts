@@ -7,7 +7,7 @@ import { newMainScenario } from '../../server/src/core/newScenario';
 import { builtInLibraryFolder } from '../../server/src/libraries';
 import { checkCleanAndFlatten } from '../support/cliChecks';
 import { repoRoot } from '../support/paths';
-import { requireEsmini, runEsmini, tracksOf } from '../support/esmini';
+import { esminiCollisions, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { BEHAVIOURS } from '../support/libraryBehaviours';
 import { applyEdits } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
@@ -82,7 +82,8 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
   }
 
   /**
-   * The composed main checked clean, run in esmini, and each module's behaviour asserted with the library's own assertions;
+   * The composed main checked clean, run in esmini, and each module's behaviour asserted with the library's own assertions,
+   * and no two of its scripted actors (all but the Ego, the system under test, which no driver drives here) touching;
    * `mirrored`: on a road of left-hand traffic, esmini's tracks mirrored back across the road's reference line (y -y) first.
    */
   async function behavesAsItsExamples(
@@ -101,10 +102,19 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
       [...tracks].map(([name, track]) => [name, mirrored ? track.map((point) => ({ ...point, y: -point.y })) : track]),
     );
     for (const module of MODULES) BEHAVIOURS[module](moduleAsComposed(module, text), asserted, []);
+    const collisions = await esminiCollisions(path.join(root, 'flat.xosc'));
+    assert.ok(collisions.length > 0, "esmini's collision detection names the Ego's collisions (it ran)");
+    assert.deepEqual(
+      collisions
+        .filter((collision) => !collision.entities.includes('Ego'))
+        .map((collision) => `${collision.entities.join(' and ')} at ${collision.time} s`),
+      [],
+      'scripted actors collide',
+    );
     return tracks;
   }
 
-  it('a cut-in, a lead brake and a pedestrian crossing into a main with only an ego: each adds its actor, placed as in its example; clean, and each behaves as in its example in esmini', async function () {
+  it('a cut-in, a lead brake and a pedestrian crossing into a main with only an ego: each adds its actor, placed as in its example (the lead behind the cut-in car, no faster); clean, each behaves as in its example in esmini, and no two scripted actors touch', async function () {
     const { text, asked } = await compose(newMain());
     // Ego plays `ego` (its name, case aside); each actor has no entity to play it: none is free (Ego plays the ego, the
     // adversary acts in the cut-in already), so the new one is the only answer and no question is asked.
@@ -136,8 +146,10 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
         ['Ego', '-1', '10', '$EgoSpeed'],
         // The cut-in's car 35 m ahead in the lane beside, 3 m/s slower than the ego (its example: 20 and 17 m/s).
         ['adversary', '-2', '45', '7'],
-        // The lead 34.5 m ahead in the ego's lane, 2 m/s slower (its example: 16 and 14 m/s).
-        ['lead', '-1', '44.5', '8'],
+        // The lead 34.5 m ahead in the ego's lane (level with the cut-in's car at most), 2 m/s slower than the cut-in's car
+        // (its example: 16 and 14 m/s), which enters the lane ahead of it and never into it; 8 m/s (2 slower than the ego)
+        // before 29 November 2026, when the cut-in's car cut in onto it (4.45 s) and ran into it braking.
+        ['lead', '-1', '44.5', '5'],
         // The pedestrian 80 m ahead on the sidewalk, standing (its example's ego drives at 10 m/s, as this one).
         ['pedestrian', '-4', '90', '0'],
       ],

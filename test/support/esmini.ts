@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { esminiBinDir, esminiXodrDir, requireEsminiProgram } from './esminiBinaries';
 import { runBounded } from './processes';
+import { Collision, collisionsIn, parseEsminiLog } from '../../server/src/esmini/log';
 
 /** esmini as built by `bash ../shared/esmini/build.sh .cache/esmini`. */
 export const esminiBinary = path.join(esminiBinDir, 'esmini');
@@ -40,6 +41,17 @@ export async function runEsmini(scenario: string, maxTime: number, wallLimitMs =
   const steps = readEsminiCsv(csv, maxTime);
   fs.rmSync(csv, { force: true });
   return steps;
+}
+
+/** The collisions esmini's global detection (`--collision`) logs in a headless run of the scenario (fixed step and seed), as each begins. */
+export async function esminiCollisions(scenario: string, wallLimitMs = 60_000): Promise<Collision[]> {
+  const directory = path.dirname(scenario);
+  const csv = path.join(directory, `${path.basename(scenario, '.xosc')}.collisions.csv`);
+  const args = repeatableRunArgs(scenario, csv, '--path', esminiXodrDir, '--collision');
+  const { code, output } = await runBounded(esminiBinary, args, { cwd: directory }, wallLimitMs);
+  fs.rmSync(csv, { force: true });
+  if (code !== 0) throw new Error(`esmini failed on ${scenario} (exit ${code}):\n${output.slice(-2000)}`);
+  return collisionsIn(parseEsminiLog(output));
 }
 
 /** The steps of esmini's CSV log (`--csv_logger`) up to `maxTime` seconds of simulated time. */

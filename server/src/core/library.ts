@@ -59,7 +59,15 @@ export interface LibraryModule {
   picture?: string;
   /** The files of modules of the same name in later libraries, which this one hides. */
   hides: string[];
+  /**
+   * Its actor's place in the ego's lane, for *Insert into Main* (doc block `queue:`): `enters` it ahead of the ego (a cut-in),
+   * or drives `slower` than the ego ahead in it (a braking lead): a slower one goes behind the ones that enter (docs/library.md).
+   */
+  queue?: ModuleQueue;
 }
+
+export type ModuleQueue = 'enters' | 'slower';
+const QUEUES: readonly string[] = ['enters', 'slower'] satisfies ModuleQueue[];
 
 /** A library folder or module file that cannot be used, and why; the rest of the library still is. */
 export interface LibraryProblem {
@@ -147,6 +155,15 @@ export function readModule(text: string, file: string, library: LibraryFolder): 
       ? { name: actorField, about: '' }
       : { name: actorField.slice(0, actorColon).trim(), about: actorField.slice(actorColon + 1).trim() };
 
+  const queueField = fields.get('queue');
+  if (queueField && !QUEUES.includes(queueField.value))
+    problems.push({
+      file,
+      line: queueField.line,
+      message: `'queue: ${queueField.value}' is neither 'enters' (the actor enters the ego's lane ahead of it) nor 'slower' (it drives slower ahead in that lane)`,
+    });
+  const queue = queueField && QUEUES.includes(queueField.value) ? (queueField.value as ModuleQueue) : undefined;
+
   const model = parseScenario(text);
   const parseError = model.document.problems.find((problem) => problem.severity === 'error');
   if (parseError) problems.push({ file, line: lineAt(parseError.start), message: `not well-formed XML: ${parseError.message}` });
@@ -202,7 +219,20 @@ export function readModule(text: string, file: string, library: LibraryFolder): 
   }
   if (problems.length > 0) return { problems };
   return {
-    module: { name, file, library, title, group, summary, maneuverGroup, actor, actors: groupActors(groupInfo), parameters, hides: [] },
+    module: {
+      name,
+      file,
+      library,
+      title,
+      group,
+      summary,
+      maneuverGroup,
+      actor,
+      actors: groupActors(groupInfo),
+      parameters,
+      hides: [],
+      ...(queue ? { queue } : {}),
+    },
     problems,
   };
 }

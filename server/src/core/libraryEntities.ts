@@ -6,7 +6,8 @@
  */
 import type { LibraryModule } from './library';
 import { moduleRoles, type ModuleRole } from './libraryInsert';
-import { parseScenario } from './model';
+import { parseScenario, type ScenarioModel } from './model';
+import { LIBRARY_PREFIX } from './sources';
 import { pathsFor } from './paths';
 import { attribute, attributeValue, escapeAttributeValue, XmlAttribute, XmlElement } from './xml';
 
@@ -94,6 +95,55 @@ function placementOf(element: XmlElement | undefined): Placement {
     speedTarget ??= child(child(child(child(action, 'LongitudinalAction'), 'SpeedAction'), 'SpeedActionTarget'), 'AbsoluteTargetSpeed');
   }
   return { lanePosition, speedTarget };
+}
+
+/** An actor of the main that enters its ego's lane ahead of it (a cut-in's car): how far ahead it starts, and how fast. */
+interface QueueMember {
+  name: string;
+  distance: number;
+  speed: number;
+}
+
+/**
+ * The actors of the main's groups that import a module whose actor enters the lane of `player` ahead of it (`entering`,
+ * by name; the group's keys name `player`), placed in its Init ahead of `player`: by a LanePosition on its road (the
+ * distance counted as `player` drives, `sense`) or a RelativeLanePosition from it, at a known speed.
+ */
+function queueMembers(
+  main: ScenarioModel,
+  storyboard: XmlElement | undefined,
+  player: string,
+  entering: ReadonlySet<string>,
+  sense: number,
+): QueueMember[] {
+  const root = main.document.root;
+  const playerPosition = placementOf(privateOf(storyboard, player)).lanePosition;
+  const members: QueueMember[] = [];
+  for (const group of main.groups) {
+    const reference = child(group.element, 'ScenarioReference');
+    const file = valueOf(reference, 'scenarioFileName') ?? '';
+    if (!file.startsWith(LIBRARY_PREFIX) || !entering.has(file.slice(LIBRARY_PREFIX.length).replace(/\.xosc$/i, ''))) continue;
+    const values = child(reference, 'ManeuverGroupReference')?.children.map((parameter) => valueOf(parameter, 'value')) ?? [];
+    const name = valueOf(child(child(group.element, 'Actors'), 'EntityRef'), 'entityRef');
+    if (!name || !values.includes(player)) continue;
+    const placed = privateOf(storyboard, name);
+    const { lanePosition, speedTarget } = placementOf(placed);
+    const relative = placed?.children
+      .map((action) => child(child(child(action, 'TeleportAction'), 'Position'), 'RelativeLanePosition'))
+      .find((position) => position !== undefined);
+    let distance: number | undefined;
+    if (
+      lanePosition &&
+      playerPosition &&
+      valueIn(root, valueOf(lanePosition, 'roadId')) === valueIn(root, valueOf(playerPosition, 'roadId'))
+    ) {
+      const [s, playerS] = [numberIn(root, valueOf(lanePosition, 's')), numberIn(root, valueOf(playerPosition, 's'))];
+      if (s !== undefined && playerS !== undefined) distance = sense * (s - playerS);
+    } else if (relative && valueOf(relative, 'entityRef') === player) distance = numberIn(root, valueOf(relative, 'ds'));
+    const speed = numberIn(root, valueOf(speedTarget, 'value'));
+    if (distance !== undefined && distance > 0 && speed !== undefined) members.push({ name, distance, speed });
+  }
+  return members;
 }
 
 /** Keys of an offset from a lane's centre line that esmini takes along the road's t, not the entity's left (swerving-lead's, arrive-leave-site's, oncoming-vehicle's). */
@@ -246,6 +296,7 @@ export function newEntityChanges(
   players: Readonly<Record<string, string>>,
   files?: { main: string; example: string },
   rules?: TrafficRules,
+  entering?: ReadonlySet<string>,
 ): NewEntities {
   const result: NewEntities = { changes: [], values: {}, added: [] };
   const roles = moduleRoles(module).filter((role) => create[role.name] !== undefined);
@@ -295,6 +346,24 @@ export function newEntityChanges(
   const actionsIndent = /^[ \t]*/.exec(mainText.slice(lineStart(mainText, actions.start)))?.[0] ?? '';
   const objects: string[] = [];
   const privates: string[] = [];
+  // A slower car in the ego's lane goes behind the cars that enter that lane ahead of the ego, no faster than they: a
+  // scripted car neither brakes nor steers for another, so one ahead that slows down would be run into (docs/library.md).
+  const mainReferencePosition = reference && placementOf(privateOf(storyboard, reference.player)).lanePosition;
+  const referenceLane = numberIn(root, valueOf(mainReferencePosition, 'laneId'));
+  const members =
+    module.queue === 'slower' && reference && entering && entering.size > 0
+      ? queueMembers(
+          main,
+          storyboard,
+          reference.player,
+          entering,
+          referenceLane === undefined ? 1 : drivingSense(referenceLane, frame?.mainLeftHand ?? false),
+        )
+      : [];
+  const nearest = members.reduce<QueueMember | undefined>(
+    (found, member) => (found && found.distance <= member.distance ? found : member),
+    undefined,
+  );
   for (const role of roles) {
     const name = create[role.name];
     if (!/\S/.test(name)) throw new Error(`the new entity for '${role.name}' has no name`);
@@ -349,7 +418,9 @@ export function newEntityChanges(
             `the main's Init does not place ${player}: '${name}' is placed relative to it as in the example of ${module.name}; place ${player} first, or pick an entity of the main to play '${role.name}'`,
           );
         const dLane = laneIndex(ownLane) - laneIndex(refLane);
-        const distance = ownS - refS;
+        // Behind the nearest car that enters the lane (level with it at most), as it cuts in ahead of this one.
+        const queued = role.actor && nearest !== undefined && dLane === 0 && ownS - refS > nearest.distance;
+        const distance = queued && nearest ? nearest.distance : ownS - refS;
         if (!mainPosition || mainLane === undefined || mainS === undefined || mainRoad === undefined) {
           // The ego stands where its route, world or road position puts it: the entity is placed relative to it, in
           // the lanes as counted from the ego's (right-hand side, as the example's), ds along the road.
@@ -410,11 +481,16 @@ export function newEntityChanges(
       const refSpeed = numberIn(exampleRoot, valueOf(exampleReference.speedTarget, 'value'));
       const mainSpeed = numberIn(root, valueOf(mainReference.speedTarget, 'value'));
       if (speedAttribute && ownSpeed !== undefined && ownSpeed > 0 && refSpeed !== undefined && mainSpeed !== undefined) {
-        const speed = rounded(Math.max(0, ownSpeed + mainSpeed - refSpeed));
+        // Behind a car that enters the lane: the example's difference to its follower taken from that car, and no faster than any.
+        const followed = role.actor && nearest ? nearest.speed : mainSpeed;
+        const fastest = role.actor && nearest ? Math.min(...members.map((member) => member.speed)) : Infinity;
+        const speed = rounded(Math.max(0, Math.min(fastest, ownSpeed + followed - refSpeed)));
         replacements.push({ attribute: speedAttribute, value: speed });
         where += `, ${speed} m/s`;
+        if (role.actor && nearest)
+          where += ` (behind ${nearest.name}, which enters the lane of ${player} ahead of it: ${rounded(Math.max(0, nearest.speed - Number(speed)))} m/s slower, so that ${nearest.name} cuts in ahead of it and never runs into it)`;
         // Standing where the example's drives: the closing speed of the example is out of reach.
-        if (ownSpeed + mainSpeed - refSpeed <= 0)
+        if (!(role.actor && nearest) && ownSpeed + mainSpeed - refSpeed <= 0)
           where += ` (standing: the example's ${reference.name} drives ${rounded(refSpeed)} m/s, ${player} ${rounded(mainSpeed)}; a faster ${player} gives the example's closing speed)`;
         if (role.actor)
           for (const parameter of module.parameters)

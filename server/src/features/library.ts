@@ -134,6 +134,7 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
       players,
       mainFile && module.example ? { main: mainFile, example: module.example } : undefined,
       rules,
+      new Set(listing.modules.filter((candidate) => candidate.queue === 'enters').map((candidate) => candidate.name)),
     );
     const at = position ? lines.offsetAt(position) : undefined;
     inserted = insertModuleGroup(text, module, { act: params.act, at, players, values: entities.values });
