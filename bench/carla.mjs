@@ -6,6 +6,7 @@ import { existsSync, mkdtempSync, rmSync } from 'node:fs';
 import { loadavg, tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { cpuMs, now, startServer, stats, uriOf } from './lspSession.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const shared = path.resolve(root, '..', 'shared');
@@ -91,6 +92,35 @@ try {
   console.log(
     `  ratio export / flatten of the same file: ${(median(exported) / median(flattened)).toFixed(2)}x wall, ${flattenRatio.toFixed(2)}x CPU (target <= 1.5x: ${flattenRatio <= 1.5 ? 'within' : 'OVER'})`,
   );
+  // Export for CARLA… in the editor: the same export in the running language server, where no process starts.
+  const server = path.join(root, 'dist', 'server.js');
+  const session = await startServer(server, esmini, {
+    scenarioPath: [path.join(esmini, 'Catalogs')],
+    carla: { release: '0.9.15' },
+    esmini: { roadPath: [path.join(shared, 'esmini', 'xodr')] },
+  });
+  try {
+    const params = { uri: uriOf(input), outputPath: path.join(out, 'editor.xosc'), outsideWorkspace: true };
+    /** @type {number[]} */
+    const times = [];
+    const cpuBefore = cpuMs(session.child.pid);
+    // One export more than measured: the first loads the export's code into the server.
+    for (let run = 0; run <= runs; run++) {
+      const started = now();
+      /** @type {{ written: string | null }} */
+      const result = await session.connection.sendRequest('modular2simple/exportForCarla', params);
+      if (!result.written) throw new Error(`the editor's export wrote nothing: ${JSON.stringify(result)}`);
+      if (run > 0) times.push(now() - started);
+    }
+    const perExportCpu = (cpuMs(session.child.pid) - cpuBefore) / (runs + 1);
+    const { median: editorMs, p95 } = stats(times);
+    console.log(
+      `  Export for CARLA… in the editor (the language server, after its first export): median ${editorMs.toFixed(1)} ms, p95 ${p95.toFixed(1)} ms, ` +
+        `server CPU ${perExportCpu.toFixed(1)} ms an export (first included); ${(editorMs / median(bare)).toFixed(2)}x a bare start by wall`,
+    );
+  } finally {
+    await session.stop();
+  }
   const harness = path.join(shared, 'carla', 'check.py');
   if (existsSync(harness) && existsSync(path.join(root, '.cache', 'carla', 'scenario_runner'))) {
     const checked = measure('python3', [harness, '--fix-sr-bugs', output]);
