@@ -1,6 +1,7 @@
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { Flattener, FlatSource, originOf } from '../core/flatten';
+import { esminiFindingsOfAnalysis } from '../core/flatten/esminiFindings';
 import { packagedFilesFolder } from '../core/flatten/rebase';
 import { Problem, problemData } from '../core/problems';
 import { foundRoadName, locateRoadFile, RoadFileLookup, roadFolders, scenarioFolderOf } from '../core/semantics/roadFiles';
@@ -69,11 +70,6 @@ export interface EsminiRunOptions {
   cancel?: AbortSignal;
   /** Run whatever can be flattened despite the scenario's errors (*Run Anyway*, `run --force`); they are listed in `flattenProblems`. */
   force?: boolean;
-  /**
-   * The problems of the main's analysis for esmini, when the caller holds it already (the editor's analysis database under
-   * `simulator = esmini`): `esminiFindings` are taken from them instead of analysing the main again.
-   */
-  esminiAnalysis?: () => Promise<readonly Problem[]>;
   /** `runScenarioText`: files written beside the scenario in its run folder, each at its path relative to that folder (a kept run's package files). */
   files?: readonly { path: string; bytes: Uint8Array }[];
   /**
@@ -396,7 +392,7 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
     };
   }
 
-  const findings = await esminiFindingsOf(flattener, main, flattenProblems, options.esminiAnalysis);
+  const findings = esminiFindingsOf(flattener, flat.source, flattenProblems);
   // Those the flattening reported already are printed with its problems.
   const esminiFindings = flattener.simulator === 'esmini' ? [] : findings;
   const controllerFilesFrom = controllerFilesOfFlattening(main, flat.source);
@@ -502,24 +498,16 @@ export async function runScenario(flattener: Flattener, main: SourceRef, options
 
 /**
  * The esmini profile's findings (code `simulator`) of `main` and of the groups it imports, which a run in esmini names
- * whatever simulator the flattening checked for: those of the flattening when it checked for esmini, else those of the
- * analysis for esmini the caller holds (`held`), else read again so.
+ * whatever simulator the flattening checked for: those of the flattening when it checked for esmini, else those its
+ * analysis gives checked again in esmini's context (`esminiFindingsOfAnalysis`: no file is read or linked again).
  * Those of a StartTrigger whose edge esmini never fires come first: an Act that never starts holds back its Events, whose
  * own findings (an Act that does not start at time 0) follow from it.
  */
-async function esminiFindingsOf(
-  flattener: Flattener,
-  main: SourceRef,
-  flattenProblems: readonly Problem[],
-  held: (() => Promise<readonly Problem[]>) | undefined,
-): Promise<Problem[]> {
-  const problems =
+function esminiFindingsOf(flattener: Flattener, flattened: FlatSource, flattenProblems: readonly Problem[]): Problem[] {
+  const findings =
     flattener.simulator === 'esmini'
-      ? flattenProblems
-      : held
-        ? await held()
-        : (await new Flattener(flattener.store, 'esmini').analyze(main)).problems;
-  const findings = problems.filter((problem) => problem.code === 'simulator');
+      ? flattenProblems.filter((problem) => problem.code === 'simulator')
+      : esminiFindingsOfAnalysis(flattened);
   const neverFires = (problem: Problem) => problemData(problem, 'simulator')?.simulationTimeFix === 'edge';
   return [...findings.filter(neverFires), ...findings.filter((problem) => !neverFires(problem))];
 }

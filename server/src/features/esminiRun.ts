@@ -58,8 +58,6 @@ export class EsminiRuns {
       durationSetBy: 'the modular2simple.esmini.duration setting',
       cancel: cancel.signal,
       force: params.force === true,
-      // Under the esmini setting the database's analysis (the one the diagnostics show) holds esmini's findings already.
-      esminiAnalysis: workspace.settings.simulator === 'esmini' ? async () => (await workspace.analyze(ref)).problems : undefined,
     };
     const distribution = await distributionAnalysis(workspace, ref);
     const result = distribution

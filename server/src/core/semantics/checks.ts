@@ -617,6 +617,15 @@ export const SEMANTIC_CHECKS: readonly { name: string; check: SemanticCheck }[] 
   { name: 'value ranges', check: valueRanges },
 ];
 
+/**
+ * The checks of SEMANTIC_CHECKS whose findings for esmini carry the code `simulator` (its profile, its own rules, the actors
+ * it refuses): run again in esmini's context over semantics read for another simulator, they give what an analysis for
+ * esmini gives of that code (`core/flatten/esminiFindings.ts`).
+ */
+export const ESMINI_FINDING_CHECKS: readonly { name: string; check: SemanticCheck }[] = SEMANTIC_CHECKS.filter((entry) =>
+  ['simulator profile', 'esmini', 'private action actors'].includes(entry.name),
+);
+
 /** The checks of a flattened output (SPEC 11.5); entities are checked by the flattener at the reference. */
 export const OUTPUT_CHECKS: readonly { name: string; check: SemanticCheck }[] = [
   { name: 'undeclared parameter', check: undeclaredParameters },
