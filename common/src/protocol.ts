@@ -6,6 +6,7 @@ import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
 import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from './libraryProtocol';
 import { RunTraceRequest, SceneRequest } from './sceneProtocol';
+import type { RunCollision } from './collisions';
 import type { TraceRecord } from './trace';
 
 export interface FlattenOptions {
@@ -285,7 +286,7 @@ export interface RunEsminiResult {
    */
   csvFile?: string;
   /** Where two entities' bounding boxes began to overlap (s; esmini's collision detection), but for the overlaps the scenario means. */
-  collisions?: { entities: [string, string]; time: number }[];
+  collisions?: RunCollision[];
   /** The flattened scenario as handed to esmini (with the added time limit). */
   scenarioFile?: string;
   /** For a distribution file: the ScenarioFile (a .xosc) its concrete scenario was made from, whose roads the run is drawn on. */

@@ -19,6 +19,7 @@ import type { RunTracks } from '../../client/src/birdsEye/messages';
 import { keptRunName, loadRun, runTracks } from '../../client/src/birdsEye/runData';
 import { parseOpenDrive } from '../../server/src/core/opendrive/road';
 import { sampleNetwork } from '../../server/src/core/opendrive/sample';
+import { collisionSentence } from '../../server/src/esmini/run';
 import type { SceneResult } from '../../common/src/sceneProtocol';
 import { temporaryWorkspace } from '../support/workspace';
 import { STRAIGHT_ROAD } from '../support/roads';
@@ -138,8 +139,10 @@ describe("client: the bird's-eye view's drawing", () => {
       { entities: ['adversary', 'lead'], time: 4.45 },
     ]);
     assert.deepEqual(hit.notes, [
-      'adversary and lead collide at t=4.45 s: their bounding boxes overlap (esmini drives on through each other)',
+      'adversary and lead collide at t=4.45 s (their bounding boxes overlap; esmini drives on through each other)',
     ]);
+    // Worded as the run's own message words it (esmini/run.ts), the names without their places.
+    assert.equal(`; ${hit.notes[0]}`, collisionSentence([{ entities: ['adversary', 'lead'], time: 4.45 }]));
   });
 
   it("names a batch's kept run as the Variations view lists it (#I of RESULTS), any other run by its file", async () => {

@@ -4,7 +4,8 @@ import { commandTargets } from '../commands';
 import { packageEntryUri } from '../packageFileSystem';
 import { BirdsEyeView } from './panel';
 import type { TraceRecord } from '../../../common/src/trace';
-import type { RunCollision, RunSource } from './runData';
+import type { RunCollision } from '../../../common/src/collisions';
+import type { RunSource } from './runData';
 
 /** Registers the bird's-eye view and its commands; returns the view (for the extension's API). */
 export function registerBirdsEye(

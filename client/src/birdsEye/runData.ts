@@ -2,6 +2,7 @@ import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { EsminiRun, parseEsminiCsv, parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
+import { collisionNote, RunCollision } from '../../../common/src/collisions';
 import type { RunTracks } from './messages';
 
 /** The view draws at most this many frames of a run; longer runs are evenly thinned. */
@@ -40,12 +41,6 @@ export interface RunSource {
   collisions?: RunCollision[];
 }
 
-/** Two entities whose bounding boxes begin to overlap at `time` (s). */
-export interface RunCollision {
-  entities: [string, string];
-  time: number;
-}
-
 /** A run read: what the view draws (its event starts still empty) and esmini's log of it, when found. */
 export interface LoadedRun {
   tracks: RunTracks;
@@ -68,10 +63,7 @@ export function runTracks(
   const notes: string[] = [];
   if (run.truncated) notes.push('the run is longer than the view reads; its end is left out');
   if (every > 1) notes.push(`every ${every}th of ${run.times.length} steps is drawn`);
-  for (const { entities, time } of collisions)
-    notes.push(
-      `${entities[0]} and ${entities[1]} collide at t=${round(time)} s: their bounding boxes overlap (esmini drives on through each other)`,
-    );
+  for (const collision of collisions) notes.push(collisionNote(collision));
   return {
     label,
     times: indices.map((i) => run.times[i]),

@@ -11,6 +11,7 @@ import { CatalogLoader } from '../core/semantics/catalogs';
 import { attribute, attributeValue, descendants, escapeAttributeValue, parseXml, XmlElement } from '../core/xml';
 import { anyEntityMoved, parseEsminiLoadedRoad } from '../../../common/src/esminiCsv';
 import type { TraceRecord } from '../../../common/src/trace';
+import { COLLISION_WHY, collisionWords, secondsText } from '../../../common/src/collisions';
 import { ControllerFilesFrom, controllerFilesOfFlattening, withCatalogFolderNote, withControllerFilesFrom } from './controllerFiles';
 import { locateEsmini } from './locate';
 import { Collision, collisionOf, collisionsIn, EsminiLogMessage, EsminiRemark, isCollisionEnd, isMeantOverlap, readEsminiLog } from './log';
@@ -743,35 +744,29 @@ export function collisionSentence(
     if (!first.has(key)) first.set(key, collision);
   }
   if (first.size === 0) return '';
-  const said = [...first.values()].slice(0, NAMED_COLLISIONS).map(({ entities, time }) => {
-    const [a, b] = entities.map((name) => {
+  const said = [...first.values()].slice(0, NAMED_COLLISIONS).map((collision) =>
+    collisionWords(collision, (name) => {
       const place = declaredAt(name);
       return place ? `${name} (${place})` : name;
-    });
-    return `${a} and ${b} collide${time === undefined ? ' at the start' : ` at t=${trimmed(time)} s`}`;
-  });
+    }),
+  );
   const more =
     first.size > NAMED_COLLISIONS ? ` and ${first.size - NAMED_COLLISIONS} more pair${first.size - NAMED_COLLISIONS === 1 ? '' : 's'}` : '';
-  return `; ${said.join(', ')}${more} (their bounding boxes overlap; esmini drives on through each other)`;
+  return `; ${said.join(', ')}${more} (${COLLISION_WHY})`;
 }
 
 /** Why the time limit added to a run ended it, in one sentence (the same on every machine: no wall-clock figure). */
 export function limitSentence(limit: RunLimit): string {
   return {
-    user: `stopped at the ${trimmed(limit.seconds)} s limit ${limit.setBy ? `set by ${limit.setBy}` : 'set for the run'}, before the scenario ended by itself`,
-    'no-end': `the scenario's StopTrigger has no condition, so it has no end of its own and runs ${trimmed(limit.seconds)} s (set a duration${limit.setBy ? ` with ${limit.setBy}` : ''} to run longer)`,
-    runaway: `its StopTrigger had not ended it after ${trimmed(limit.seconds)} s simulated, so it was stopped as a runaway`,
+    user: `stopped at the ${secondsText(limit.seconds)} s limit ${limit.setBy ? `set by ${limit.setBy}` : 'set for the run'}, before the scenario ended by itself`,
+    'no-end': `the scenario's StopTrigger has no condition, so it has no end of its own and runs ${secondsText(limit.seconds)} s (set a duration${limit.setBy ? ` with ${limit.setBy}` : ''} to run longer)`,
+    runaway: `its StopTrigger had not ended it after ${secondsText(limit.seconds)} s simulated, so it was stopped as a runaway`,
   }[limit.kind];
 }
 
 function checkDuration(duration: number | undefined): void {
   if (duration !== undefined && (!(duration > 0) || !Number.isFinite(duration)))
     throw new Error(`the duration must be a positive number of seconds, not ${duration}`);
-}
-
-/** Seconds without trailing zeros: 30, 2.5. */
-function trimmed(seconds: number): string {
-  return String(Number(seconds.toFixed(3)));
 }
 
 /** Removes a run's private folder (its CSV and scenario copy). */
