@@ -5,6 +5,7 @@ import fc from 'fast-check';
 import JSZip from 'jszip';
 import { firstDifference } from '../../server/src/core/equivalence';
 import { applyEdits, detectIndentation, FormatOptions, formatXml } from '../../server/src/core/format';
+import { LineIndex } from '../../server/src/core/text';
 import { sharedDir } from '../support/paths';
 
 const TWO: FormatOptions = { tabSize: 2, insertSpaces: true, maxLineWidth: 120 };
@@ -89,6 +90,35 @@ describe('formatter (core)', () => {
   it('keeps CRLF line ends and a byte-order mark', () => {
     const input = '\uFEFF<?xml version="1.0"?>\r\n<A>\r\n<B/>\r\n</A>';
     assert.equal(format(input), '\uFEFF<?xml version="1.0"?>\r\n<A>\r\n  <B/>\r\n</A>\r\n');
+  });
+
+  it("gives the line breaks wanted before the first one in the file (gaps held until then) the file's line end", () => {
+    assert.equal(format('<A><B/><C/>\r\n</A>'), '<A>\r\n  <B/>\r\n  <C/>\r\n</A>\r\n');
+    assert.equal(format('<A><B/><C/>\n</A>'), '<A>\n  <B/>\n  <C/>\n</A>\n');
+    // No line break between markup: the first one of the file decides, here inside a comment (kept on its line).
+    assert.equal(format('<A><B/><!-- a\r\nb --></A>'), '<A>\r\n  <B/> <!-- a\r\nb -->\r\n</A>\r\n');
+  });
+
+  it('places the edits of a format on lines exactly as a search per offset does, LF, CRLF and CR alike', () => {
+    for (const input of [
+      '<A>\n<B   x = "1"/>\n\n\n<C>\n<D/></C></A>',
+      '<A>\r\n<B/>\r\n<C>\r\n\r\n<D/></C></A>',
+      '<A>\r<B/>\r\r<C><D/></C></A>',
+    ]) {
+      const result = formatXml(input, { tabSize: 4, insertSpaces: false, maxLineWidth: 10 });
+      assert.ok(result.ok && result.edits.length > 3, input);
+      const lines = new LineIndex(input);
+      assert.deepEqual(
+        lines.rangesInOrder(result.edits),
+        result.edits.map((edit) => lines.range(edit.start, edit.end)),
+      );
+      // Spans out of order still get their own places.
+      const reversed = [...result.edits].reverse();
+      assert.deepEqual(
+        lines.rangesInOrder(reversed),
+        reversed.map((edit) => lines.range(edit.start, edit.end)),
+      );
+    }
   });
 
   it('is idempotent and changes nothing in an already formatted document (no edits)', () => {

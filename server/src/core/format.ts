@@ -27,7 +27,8 @@ interface Misc {
   end: number;
 }
 
-type Item = { element: XmlElement; start: number; end: number } | Misc;
+// An element is its own item (it has `start` and `end`): no object is made per element of a large file.
+type Item = XmlElement | Misc;
 
 function isBlank(text: string, start: number, end: number): boolean {
   for (let i = start; i < end; i++) {
@@ -133,9 +134,11 @@ export function formatXml(
   const blankLineBreaks: string[] = [];
   const lineBreak = (depth: number): string => (lineBreaks[depth] ??= '\n' + indent(depth));
   const blankLineBreak = (depth: number): string => (blankLineBreaks[depth] ??= '\n\n' + indent(depth));
-  const gapStarts: number[] = [];
-  const gapEnds: number[] = [];
-  const gapTexts: string[] = [];
+  const edits: FormatEdit[] = [];
+  // Gaps met before the file's line end is known (no line break in any gap yet) wait here, in document order.
+  const pending: FormatEdit[] = [];
+  // A wanted text is one of a few strings (one per depth), so each is given the file's line end once.
+  const withLineEnd = new Map<string, string>();
   let lowest = 0;
   let highest = text.length;
   if (range) {
@@ -147,15 +150,42 @@ export function formatXml(
     while (highest > lowest && (text.charCodeAt(highest - 1) === 10 || text.charCodeAt(highest - 1) === 13)) highest--;
   }
 
+  /** Makes the white space between `start` and `end` read `wanted`, with line breaks written as `lineEnd`. */
+  const edit = (start: number, end: number, wanted: string, lineEnd: '\n' | '\r\n') => {
+    if (lineEnd !== '\n' && wanted.length > 0) {
+      let converted = withLineEnd.get(wanted);
+      if (converted === undefined) withLineEnd.set(wanted, (converted = wanted.replace(/\n/g, lineEnd)));
+      wanted = converted;
+    }
+    if (end - start === wanted.length && text.startsWith(wanted, start)) return;
+    // A gap that ends where a selected line starts sets that line's indentation, so it belongs to the selection.
+    if (range && !(start === end ? start >= lowest && start <= highest : end >= lowest && start < highest)) return;
+    // Only white space is ever replaced: this is what guarantees that content cannot change.
+    if (!isBlank(text, start, end)) throw new Error(`formatter would replace content at offset ${start}`);
+    edits.push({ start, end, newText: wanted });
+  };
+
   /** Records that the white space between `start` and `end` should read `wanted` (in document order). */
   const gap = (start: number, end: number, wanted: string) => {
-    // Only the gap itself is searched: a file without line breaks between markup must stay linear.
-    for (let i = start; firstBreak === undefined && i < end; i++) {
-      if (text.charCodeAt(i) === 10) firstBreak = i > start && text.charCodeAt(i - 1) === 13 ? '\r\n' : '\n';
+    // Most gaps are empty inside tags, or already as wanted in a file with LF line ends: nothing to record.
+    if (end - start === wanted.length && (wanted.length === 0 || (firstBreak === '\n' && text.startsWith(wanted, start)))) return;
+    recordGap(start, end, wanted);
+  };
+
+  const recordGap = (start: number, end: number, wanted: string) => {
+    if (firstBreak === undefined) {
+      // Only the gap itself is searched: a file without line breaks between markup must stay linear.
+      for (let i = start; firstBreak === undefined && i < end; i++) {
+        if (text.charCodeAt(i) === 10) firstBreak = i > start && text.charCodeAt(i - 1) === 13 ? '\r\n' : '\n';
+      }
+      if (firstBreak === undefined) {
+        pending.push({ start, end, newText: wanted });
+        return;
+      }
+      for (const waiting of pending) edit(waiting.start, waiting.end, waiting.newText, firstBreak);
+      pending.length = 0;
     }
-    gapStarts.push(start);
-    gapEnds.push(end);
-    gapTexts.push(wanted);
+    edit(start, end, wanted, firstBreak);
   };
 
   const startTag = (element: XmlElement, depth: number) => {
@@ -191,7 +221,7 @@ export function formatXml(
       else if (breaks >= 2 && index > 0) wanted = blankLineBreak(depth);
       else wanted = lineBreak(depth);
       gap(previousEnd, item.start, wanted);
-      if ('element' in item) element(item.element, depth);
+      if (!('kind' in item)) element(item, depth);
       previousEnd = item.end;
     }
     gap(previousEnd, to, lineBreak(atTop ? 0 : Math.max(0, depth - 1)));
@@ -211,7 +241,7 @@ export function formatXml(
     let position = contentStart;
     for (const child of node.children) {
       miscNodes(text, position, child.start, items);
-      items.push({ element: child, start: child.start, end: child.end });
+      items.push(child);
       position = child.end;
     }
     miscNodes(text, position, contentEnd, items);
@@ -228,25 +258,23 @@ export function formatXml(
   const topItems: Item[] = [];
   const bom = text.charCodeAt(0) === 0xfeff ? 1 : 0;
   miscNodes(text, bom, root.start, topItems);
-  topItems.push({ element: root, start: root.start, end: root.end });
+  topItems.push(root);
   miscNodes(text, root.end, text.length, topItems);
   sequence(topItems, 0, bom, text.length, true);
 
+  // No gap held a line break: the file's own line end decides the gaps still waiting.
   const lineEnd = firstBreak ?? detectEol(text);
-  const edits: FormatEdit[] = [];
-  for (let i = 0; i < gapStarts.length; i++) {
-    const start = gapStarts[i];
-    const end = gapEnds[i];
-    const wanted = lineEnd === '\n' ? gapTexts[i] : gapTexts[i].replace(/\n/g, lineEnd);
-    if (end - start === wanted.length && text.startsWith(wanted, start)) continue;
-    // A gap that ends where a selected line starts sets that line's indentation, so it belongs to the selection.
-    if (range && !(start === end ? start >= lowest && start <= highest : end >= lowest && start < highest)) continue;
-    // Only white space is ever replaced: this is what guarantees that content cannot change.
-    if (!isBlank(text, start, end)) throw new Error(`formatter would replace content at offset ${start}`);
-    edits.push({ start, end, newText: wanted });
-  }
+  for (const waiting of pending) edit(waiting.start, waiting.end, waiting.newText, lineEnd);
   edits.sort((a, b) => a.start - b.start);
-  return { ok: true, edits, text: applyEdits(text, edits) };
+  // The text is made only when read: the editor takes the edits alone.
+  let output: string | undefined;
+  return {
+    ok: true,
+    edits,
+    get text() {
+      return (output ??= applyEdits(text, edits));
+    },
+  };
 }
 
 export function applyEdits(text: string, edits: FormatEdit[]): string {

@@ -64,6 +64,26 @@ export class LineIndex {
   range(start: number, end: number): Range {
     return { start: this.positionAt(start), end: this.positionAt(end) };
   }
+
+  /**
+   * The ranges of spans that are sorted and disjoint (each starts at or after the previous one's end), as `range`
+   * gives them: one walk forward through the lines instead of two searches per span (a format's tens of thousands).
+   */
+  rangesInOrder(spans: readonly { start: number; end: number }[]): Range[] {
+    const starts = this.lineStarts;
+    const length = this.text.length;
+    let line = 0;
+    const positionAt = (offset: number): Position => {
+      const clamped = Math.max(0, Math.min(offset, length));
+      // An offset before the walk's line (spans out of order) is searched for, so the answer is always `positionAt`'s.
+      if (clamped < starts[line]) return this.positionAt(clamped);
+      while (line + 1 < starts.length && starts[line + 1] <= clamped) line++;
+      return { line, character: clamped - starts[line] };
+    };
+    const ranges: Range[] = new Array<Range>(spans.length);
+    for (let i = 0; i < spans.length; i++) ranges[i] = { start: positionAt(spans[i].start), end: positionAt(spans[i].end) };
+    return ranges;
+  }
 }
 
 /**

@@ -1,8 +1,7 @@
 import { FormattingOptions, TextEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
 import { formatXml } from '../core/format';
-import { LineIndex } from '../core/text';
-import { XmlDocument } from '../core/xml';
+import { parseXml, XmlDocument } from '../core/xml';
 
 /** The edits that format a document (or the lines of `range`); a malformed document gets a message, no edits. */
 export function formattingEdits(
@@ -13,8 +12,10 @@ export function formattingEdits(
   parsed?: XmlDocument,
 ): { edits: TextEdit[]; refusal?: string } {
   const text = document.getText();
-  const result = formatXml(text, { tabSize: options.tabSize, insertSpaces: options.insertSpaces, maxLineWidth }, range, parsed);
+  // One parse serves the formatter and the line positions of its edits (the server's own, when it holds one).
+  const xml = parsed && parsed.text === text ? parsed : parseXml(text);
+  const result = formatXml(text, { tabSize: options.tabSize, insertSpaces: options.insertSpaces, maxLineWidth }, range, xml);
   if (!result.ok) return { edits: [], refusal: result.message };
-  const lines = new LineIndex(text);
-  return { edits: result.edits.map((edit) => TextEdit.replace(lines.range(edit.start, edit.end), edit.newText)) };
+  const ranges = xml.lines.rangesInOrder(result.edits);
+  return { edits: result.edits.map((edit, index) => ({ range: ranges[index], newText: edit.newText })) };
 }
