@@ -13,10 +13,20 @@
 import { isDrivingLane, type RoadNetwork } from '../opendrive/road';
 import { laneAtPoint, snappedLaneAtPoint } from '../opendrive/lanePosition';
 import { LaneStretch, routeLanes, RouteWaypoint } from '../opendrive/route';
-import { baseName } from '../sources';
 import { CARLA_FACTS } from '../profiles/carla';
 import { SR_ATOMICS, SR_PARSER } from '../profiles/scenarioRunner';
 import { roadPositionPose } from './trajectoryPoint';
+import {
+  describeProfile,
+  FROM_TIME_ON,
+  lineOf,
+  routeSpeedProfile,
+  runStopTime,
+  speedAt,
+  SpeedProfile,
+  startsAtZero,
+  timeAt,
+} from './routeSpeedProfile';
 import { actorsOf, constantSpeedOf, mayActOn, scenarioObjectOf, storySpeedOf } from './scenarioTree';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
 
@@ -26,11 +36,6 @@ export const ROUTE_STEP = 1;
 /** An element's name after 'a' or 'an'. */
 function withArticle(name: string): string {
   return `${/^[AEIOU]/.test(name) ? 'an' : 'a'} ${name}`;
-}
-
-/** Where a node was written (`file:line`), or '' when it was not. */
-function lineOf(node: Node): string {
-  return node.place ? `${baseName(node.place.source)}:${node.place.range.start.line + 1}` : '';
 }
 
 /** The route's waypoints as lane positions, or why one is not. */
@@ -204,7 +209,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
       }`;
     }
   if (typeof starts === 'string') return starts;
-  const { speed, along } = starts;
+  const { speed, along, profile } = starts;
   if (!(speed > 0)) return `'${actor}' keeps the speed ${speed}, and a trajectory at that speed has no times`;
   const start = startOf(tree, actor, road, walker);
   if (typeof start === 'string') return start;
@@ -251,9 +256,27 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
         ['s', String(vertex.s)],
       ]);
       // Times from the action's start: ScenarioRunner's controller counts them from the atomic's start (npc_vehicle_control.py run_step).
-      return makeNode('Vertex', [['time', fourDecimals(length / speed)]], [makeNode('Position', [], [lane])]);
+      return makeNode(
+        'Vertex',
+        [['time', fourDecimals(profile ? timeAt(profile, length) : length / speed)]],
+        [makeNode('Position', [], [lane])],
+      );
     }),
   );
+  let timing = `timed at its speed ${fourDecimals(speed)} m/s`;
+  if (profile) {
+    // ScenarioRunner sets the Init speed again once the Init trajectory ends; esmini keeps the speed the story set.
+    const ends = timeAt(profile, length);
+    const endSpeed = speedAt(profile, ends);
+    const stop = runStopTime(tree);
+    const stopsBefore = stop !== undefined && stop <= ends;
+    const fact = CARLA_FACTS.vehicleSpeedChangeOnTrajectory;
+    timing = `timed by its speed as esmini drives it, ${describeProfile(profile)}: ScenarioRunner ${fact.does} (${fact.source})${
+      stopsBefore ? `; the run stops at ${fourDecimals(stop)} s, before the route ends at ${fourDecimals(ends)} s` : ''
+    }`;
+    if (Math.abs(endSpeed - profile.start) > 1e-9 && !stopsBefore)
+      return `'${actor}' ends its route at ${fourDecimals(ends)} s at ${fourDecimals(endSpeed)} m/s (its speed ${describeProfile(profile)}), and ScenarioRunner ${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.does} (${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.source}), ${fourDecimals(profile.start)} m/s, where esmini keeps ${fourDecimals(endSpeed)} m/s: the run would have to stop by then (a Storyboard StopTrigger of one SimulationTimeCondition), or the story bring it back to its Init speed`;
+  }
   const name = attr(child(action, 'Route') ?? action, 'name') ?? action.name;
   const follow = makeNode(
     'FollowTrajectoryAction',
@@ -296,7 +319,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   return {
     follow,
     walker,
-    summary: `the lanes esmini drives it in ${from}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, timed at its speed ${fourDecimals(speed)} m/s${
+    summary: `the lanes esmini drives it in ${from}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, ${timing}${
       inInit
         ? ''
         : " from the action's start; it reaches each vertex at its time from where it is expected when the action starts, and catches up or waits if it is elsewhere"
@@ -417,33 +440,21 @@ function fromWhereExpected(
 /** Where a route action finds its actor (a distance along its lane from its start), its speed then, and a walker's SpeedActions that start only after it. */
 interface RouteStart {
   speed: number;
+  /** A vehicle's speed over an Init route that its story changes at known times. */
+  profile?: SpeedProfile;
   along: number;
   how: string;
   later?: Node[];
 }
 
-/** An Init route starts where the actor starts, at the speed it keeps over the whole run. */
+/** An Init route starts where the actor starts, at the speed it keeps over the whole run, or a vehicle's by a profile known beforehand. */
 function initRouteStart(tree: Node, actor: string, action: Node): RouteStart | string {
   const speed = constantSpeedOf(tree, actor, action);
-  if (speed === undefined)
-    return `the speed of '${actor}' is not certain over the route (none set at once in the Init, a controller of its own, or an action of its story changes it), and ScenarioRunner would drive to the vertices by times computed at one speed`;
-  return { speed, along: 0, how: 'its start' };
-}
-
-/** The rules a SimulationTimeCondition holds from its value on: once the time has come. */
-const FROM_TIME_ON: ReadonlySet<string> = new Set(['greaterThan', 'greaterOrEqual', 'equalTo']);
-
-/** Whether an Act starts at the run's start: its StartTrigger one SimulationTimeCondition at 0 without delay. */
-function startsAtZero(act: Node): boolean {
-  const trigger = child(act, 'StartTrigger');
-  const conditions = trigger ? childrenNamed(trigger, 'ConditionGroup').flatMap((group) => childrenNamed(group, 'Condition')) : [];
-  const time = conditions.length === 1 ? named(conditions[0], 'SimulationTimeCondition')[0] : undefined;
-  return (
-    time !== undefined &&
-    numberAttr(conditions[0], 'delay', 0) === 0 &&
-    numberAttr(time, 'value', NaN) === 0 &&
-    FROM_TIME_ON.has(attr(time, 'rule') ?? '')
-  );
+  if (speed !== undefined) return { speed, along: 0, how: 'its start' };
+  const profile = routeSpeedProfile(tree, actor, action);
+  if (typeof profile === 'string')
+    return `the speed of '${actor}' is not certain over the route (none set at once in the Init, a controller of its own, or an action of its story changes it): ${profile}; ScenarioRunner would drive to the vertices by times computed beforehand (${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.source})`;
+  return { speed: profile.start, along: 0, how: 'its start', profile };
 }
 
 /**

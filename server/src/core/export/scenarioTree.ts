@@ -96,12 +96,17 @@ export function constantSpeedOf(
       speed = initTargetSpeed(tree, action, actor, through);
     }
   if (speed === undefined || !Number.isFinite(speed)) return undefined;
-  for (const story of childrenNamed(storyboard, 'Story'))
-    for (const action of named(story, SPEED_CHANGING)) {
-      if (isExcepted(action, except) || !changesSpeed(action)) continue;
-      if (mayActOn(action, actor)) return undefined;
-    }
-  return speed;
+  return storySpeedChangesOf(tree, actor, except).length === 0 ? speed : undefined;
+}
+
+/** The story's actions that may change the actor's speed once the story runs, but `except`, in document order. */
+export function storySpeedChangesOf(tree: Node, actor: string, except?: Excepted): Node[] {
+  const storyboard = child(tree, 'Storyboard');
+  const found: Node[] = [];
+  for (const story of storyboard ? childrenNamed(storyboard, 'Story') : [])
+    for (const action of named(story, SPEED_CHANGING))
+      if (!isExcepted(action, except) && changesSpeed(action) && mayActOn(action, actor)) found.push(action);
+  return found;
 }
 
 /**
@@ -115,12 +120,7 @@ export function storySpeedOf(tree: Node, actor: string, except?: Excepted): { sp
   if (!storyboard || !object || child(object, 'ObjectController')) return undefined;
   const inInit = init ? named(init, 'Private').filter((each) => attr(each, 'entityRef') === actor) : [];
   if (inInit.some((privateNode) => named(privateNode, SPEED_CHANGING).some(changesSpeed))) return undefined;
-  const found: Node[] = [];
-  for (const story of childrenNamed(storyboard, 'Story'))
-    for (const action of named(story, SPEED_CHANGING)) {
-      if (isExcepted(action, except) || !changesSpeed(action)) continue;
-      if (mayActOn(action, actor)) found.push(action);
-    }
+  const found = storySpeedChangesOf(tree, actor, except);
   const [action] = found;
   if (found.length !== 1 || action.name !== 'SpeedAction' || actorsOf(action).length !== 1) return undefined;
   const dynamics = named(action, 'SpeedActionDynamics')[0];

@@ -327,6 +327,11 @@ export const CARLA_FACTS = {
     source: `${ATOMICS}:516, 542, 857, 882-886 (ChangeActorTargetSpeed, ChangeActorWaypoints), srunner/scenariomanager/actorcontrols/actor_control.py:97-119, srunner/scenariomanager/actorcontrols/pedestrian_control.py:57-70`,
     severity: 'warning',
   },
+  vehicleSpeedChangeOnTrajectory: {
+    does: "keeps a vehicle on its trajectory when a SpeedAction changes its speed, and drives it by the vertex times all the same: the SpeedAction only sets its controller's target speed (ChangeActorTargetSpeed), which ends no running ChangeActorWaypoints, and NpcVehicleControl replaces that target at every tick by the speed the next vertex's time asks; once an Init trajectory ends, the actor's Init sequence sets its Init speed again",
+    source: `${ATOMICS}:516, 542, 857, 882-886 (ChangeActorTargetSpeed, ChangeActorWaypoints), srunner/scenariomanager/actorcontrols/npc_vehicle_control.py:103-113, ${RUNNER}:356-357`,
+    severity: 'warning',
+  },
   conditionsCountFromTheirStart: {
     does: "counts a SimulationTimeCondition's time and a TraveledDistanceCondition's distance from when the condition is first ticked (its Act has started), not from the run's start",
     source: `srunner/scenariomanager/timer.py:108-126 (SimulationTimeCondition.initialise, update), ${SR_TRIGGER_CONDITIONS}:1211-1228 (DriveDistance.initialise, update), ${PARSER}:1029-1032, 1124-1128`,
