@@ -33,6 +33,9 @@ import {
 } from '../../common/src/protocol';
 import {
   LibraryInsertRequest,
+  LibraryCollisionsRequest,
+  type LibraryCollisionsParams,
+  type LibraryCollisionsResult,
   LibraryModulesRequest,
   NewFromTemplateRequest,
   TemplatesRequest,
@@ -203,6 +206,11 @@ export class ServerCommandClient {
   /** Insert into main: the questions to ask, or the edit once they are answered. */
   async libraryInsert(params: LibraryInsertParams): Promise<LibraryInsertResult> {
     return (await this.running()).sendRequest(LibraryInsertRequest, params);
+  }
+
+  /** After an insert: the main run headless in esmini, and which of its scripted actors touch. */
+  async libraryCollisions(params: LibraryCollisionsParams): Promise<LibraryCollisionsResult> {
+    return (await this.running()).sendRequest(LibraryCollisionsRequest, params);
   }
 
   /** The built-in templates, for New Scenario from Template. */

@@ -102,6 +102,27 @@ export interface LibraryInsertResult {
 
 export const LibraryInsertRequest = new RequestType<LibraryInsertParams, LibraryInsertResult, void>('modular2simple/libraryInsert');
 
+/** After an insert: the main as the editor has it run headless in esmini, and the collisions between its scripted actors. */
+export interface LibraryCollisionsParams {
+  uri: string;
+  /** Setting modular2simple.esmini.path: the program or its folder; PATH when empty. */
+  esminiPath?: string;
+  /** Setting modular2simple.esmini.roadPath: extra folders for road files and catalogs. */
+  roadPath?: string[];
+}
+
+export interface LibraryCollisionsResult {
+  /** Whether esmini ran the main (else `message` says why: no esmini, not flattened, ...). */
+  ran: boolean;
+  message: string;
+  /** Where two actors of the main's groups began to touch, but for an entity a library group names as its ego (its driver under test). */
+  collisions: { entities: [string, string]; time: number }[];
+}
+
+export const LibraryCollisionsRequest = new RequestType<LibraryCollisionsParams, LibraryCollisionsResult, void>(
+  'modular2simple/libraryCollisions',
+);
+
 /** The client's command that inserts a library module (the Scenario Library's *Insert into Main*, the code action's). */
 export const INSERT_LIBRARY_MODULE_COMMAND = 'modular2simple.library.insert';
 

@@ -4,7 +4,13 @@
  */
 import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { LineSegment } from './lineSegments';
-import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from './libraryProtocol';
+import {
+  LibraryCollisionsRequest,
+  LibraryInsertRequest,
+  LibraryModulesRequest,
+  NewFromTemplateRequest,
+  TemplatesRequest,
+} from './libraryProtocol';
 import { RunTraceRequest, SceneRequest } from './sceneProtocol';
 import type { RunCollision } from './collisions';
 import type { TraceRecord } from './trace';
@@ -185,6 +191,7 @@ export const CUSTOM_REQUESTS = [
   CheckInScenarioRunnerRequest.method,
   LibraryModulesRequest.method,
   LibraryInsertRequest.method,
+  LibraryCollisionsRequest.method,
   TemplatesRequest.method,
   NewFromTemplateRequest.method,
 ];

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { LibraryModule, readModule } from '../../server/src/core/library';
-import { insertModuleGroup, mainShape, moduleRoles } from '../../server/src/core/libraryInsert';
+import { insertModuleGroup, mainShape, moduleRoles, scriptedActors } from '../../server/src/core/libraryInsert';
 import { parseXml } from '../../server/src/core/xml';
 import { repoRoot } from '../support/paths';
 
@@ -87,5 +87,22 @@ describe('Insert into main (core/libraryInsert)', () => {
     assert.deepEqual(module.actors, ['adversary']);
     const result = inserted(mainWith('\n      ', '</Act>'), module, { adversary: 'Q1', ego: 'Me' });
     assert.match(result, /<Actors selectTriggeringEntities="false">\s*<EntityRef entityRef="Q1"\/>\s*<\/Actors>/);
+  });
+  it("the main's scripted actors: its groups' actors, but for the ego a library group names without acting in it", () => {
+    const group = (name: string, actor: string, keys: Record<string, string>, file = 'library:cut-in') =>
+      `<ManeuverGroup name="${name}" maximumExecutionCount="1"><Actors selectTriggeringEntities="false"><EntityRef entityRef="${actor}"/></Actors><ScenarioReference scenarioFileName="${file}"><ManeuverGroupReference maneuverGroupName="G">${Object.entries(
+        keys,
+      )
+        .map(([key, value]) => `<ParameterReference key="${key}" value="${value}"/>`)
+        .join('')}</ManeuverGroupReference></ScenarioReference></ManeuverGroup>`;
+    const text = `<OpenSCENARIO><Entities/><Storyboard><Story name="S"><Act name="A">${[
+      group('CutIn', 'adversary', { 'RelativeDistanceCondition.entityRef': 'Ego', 'EntityRef.entityRef': 'adversary' }),
+      group('LeadBrake', 'lead', { 'EntityRef.entityRef': 'Ego', 'TimeHeadwayCondition.value': '1.5' }, 'library:lead-brake'),
+      // The ego's own group (its speed): an actor there, still the driver under test the modules name.
+      group('EgoDrive', 'Ego', {}, 'own.xosc'),
+      // A group of the user's that names an entity without acting in it: that entity stays scripted.
+      group('Follow', 'follower', { 'EntityRef.entityRef': 'adversary' }, 'own.xosc'),
+    ].join('')}</Act></Story></Storyboard></OpenSCENARIO>`;
+    assert.deepEqual([...scriptedActors(text)].sort(), ['adversary', 'follower', 'lead']);
   });
 });

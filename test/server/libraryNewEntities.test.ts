@@ -1,13 +1,13 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { LibraryInsertRequest, LibraryInsertResult } from '../../common/src/libraryProtocol';
+import { LibraryCollisionsRequest, LibraryInsertRequest, LibraryInsertResult } from '../../common/src/libraryProtocol';
 import { LibraryModule, readModule } from '../../server/src/core/library';
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { builtInLibraryFolder } from '../../server/src/libraries';
 import { checkCleanAndFlatten } from '../support/cliChecks';
 import { repoRoot } from '../support/paths';
-import { esminiCollisions, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
+import { esminiBinary, esminiCollisions, requireEsmini, runEsmini, tracksOf } from '../support/esmini';
 import { BEHAVIOURS } from '../support/libraryBehaviours';
 import { applyEdits } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
@@ -173,6 +173,34 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
         ),
       );
     await behavesAsItsExamples(this, text);
+  });
+
+  it('after an insert, the main as the editor has it run in esmini names the scripted actors that touch (not the ego), for the notice; none in the composition, two where the lead drives as if alone', async function () {
+    requireEsmini(this);
+    const { text } = await compose(newMain());
+    const uri = await client.open(fileUri(path.join(root, 'main.xosc')), text);
+    const composed = await client.send(LibraryCollisionsRequest, { uri, esminiPath: esminiBinary });
+    assert.deepEqual([composed.ran, composed.collisions], [true, []], composed.message);
+    // The lead at 8 m/s, 2 slower than the ego, as placed before 29 November 2026: the cut-in's car cuts in onto it.
+    const alone = text.replace(/(<Private entityRef="lead">[\s\S]*?<AbsoluteTargetSpeed value=")5"/, '$18"');
+    assert.notEqual(alone, text);
+    await client.close(uri);
+    await client.open(uri, alone);
+    const touching = await client.send(LibraryCollisionsRequest, { uri, esminiPath: esminiBinary });
+    assert.deepEqual(touching.collisions, [
+      { entities: ['adversary', 'lead'], time: 4.45 },
+      { entities: ['adversary', 'lead'], time: 8.6 },
+    ]);
+    // No esmini: no run, said; nothing thrown (the notice is never shown, the log says why).
+    const none = await client.send(LibraryCollisionsRequest, { uri, esminiPath: path.join(root, 'no-esmini') });
+    assert.equal(none.ran, false);
+    assert.match(none.message, /esmini/);
+    await client.close(uri);
+    assert.deepEqual(
+      fs.readdirSync(root).filter((name) => !['flat.xosc', 'main.xosc'].includes(name)),
+      [],
+      'the runs leave nothing in the workspace',
+    );
   });
 
   it('a main on a road of left-hand traffic (rule="LHT"): each actor placed as a driver there expects it, mirrored (the cut-in from the left, the pedestrian from the left sidewalk); clean, and each behaves as in its example in esmini, mirrored', async function () {

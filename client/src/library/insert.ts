@@ -7,6 +7,7 @@ import { LANGUAGE_ID, type ServerCommandClient } from '../languageClient';
 import { freeScenarioName } from '../naming';
 import { targetFolder } from '../newScenario';
 import { newFromTemplateCommand } from './templates';
+import { collisionNotice } from './collisionNotice';
 
 const TITLE = 'Insert into Main';
 /** The template a new main is written from when none is open: its entities are named after the modules' roles. */
@@ -237,6 +238,28 @@ export function reportInserted(reporter: CommandReporter, title: string, module:
   void vscode.window.setStatusBarMessage(`Inserted library:${module.name} as ${inserted.groupName} (${inserted.cast})${added}`, 8000);
 }
 
+/** Runs the main as the editor has it in esmini and shows a notice where scripted actors touch; a run that cannot happen is logged. */
+async function noticeCollisions(
+  server: ServerCommandClient,
+  reporter: CommandReporter,
+  module: LibraryModuleSummary,
+  main: vscode.Uri,
+): Promise<void> {
+  try {
+    const settings = vscode.workspace.getConfiguration('modular2simple.esmini', main);
+    const result = await server.libraryCollisions({
+      uri: main.toString(),
+      esminiPath: settings.get<string>('path') || undefined,
+      roadPath: settings.get<string[]>('roadPath') ?? [],
+    });
+    const notice = collisionNotice(module.name, result);
+    reporter.log(`${TITLE}: esmini's run after the insert: ${notice ?? (result.ran ? 'no scripted actors touch' : result.message)}`);
+    if (notice) void vscode.window.showWarningMessage(notice);
+  } catch (error) {
+    reporter.log(`${TITLE}: esmini's run after the insert failed: ${(error as Error).stack ?? String(error)}`);
+  }
+}
+
 /** Writes the module's group into an Act of the main (prepareInsert) and shows it. Returns the new group's name. */
 export async function insertIntoMain(
   server: ServerCommandClient,
@@ -260,6 +283,8 @@ export async function insertIntoMain(
     editor.revealRange(new vscode.Range(inserted.line, 0, inserted.line, 0), vscode.TextEditorRevealType.InCenter);
     editor.selection = new vscode.Selection(inserted.line, 0, inserted.line, 0);
     reportInserted(reporter, TITLE, module, inserted);
+    // Not awaited: the notice comes when the run has, and never holds the edit back.
+    void noticeCollisions(server, reporter, module, inserted.main);
     return inserted.groupName;
   } catch (error) {
     // Not awaited: the message waits for the user, the command's caller should not.

@@ -107,6 +107,29 @@ export function mainShape(text: string, at?: number): MainShape {
   };
 }
 
+/**
+ * The main's scripted actors: the entities an Actors of its ManeuverGroups names, but for one a group importing a library
+ * module names by an entity key while not acting in it (the ego a cut-in cuts in ahead of: the driver under test).
+ */
+export function scriptedActors(text: string): Set<string> {
+  const model = parseScenario(text);
+  const actors = new Set(mainShape(text).actors);
+  for (const group of model.groups) {
+    const reference = group.element.children.find((child) => child.name === 'ScenarioReference');
+    if (!(attributeValue(reference ?? group.element, 'scenarioFileName') ?? '').startsWith(LIBRARY_PREFIX)) continue;
+    const acting = new Set(
+      (group.element.children.find((child) => child.name === 'Actors')?.children ?? []).map((entityRef) =>
+        attributeValue(entityRef, 'entityRef'),
+      ),
+    );
+    for (const parameter of reference?.children.find((child) => child.name === 'ManeuverGroupReference')?.children ?? []) {
+      const value = attributeValue(parameter, 'value');
+      if (value && isEntityKey(attributeValue(parameter, 'key') ?? '') && !acting.has(value)) actors.delete(value);
+    }
+  }
+  return actors;
+}
+
 /** Each entity's kind (`Vehicle`, `Pedestrian`, `MiscObject`) where its ScenarioObject says it; a catalog entry's is not known here. */
 export function entityKinds(text: string): Map<string, string> {
   const kinds = new Map<string, string>();

@@ -13,7 +13,8 @@ import { RunEsminiParams, RunEsminiResult } from '../../../common/src/protocol';
 import { Workspace } from '../workspace';
 import { refOf, summarize } from './commands';
 
-function stringList(value: unknown): string[] {
+/** The strings of a list a client sent (blank ones and others left out). */
+export function stringList(value: unknown): string[] {
   return Array.isArray(value) ? value.filter((item): item is string => typeof item === 'string' && item.trim().length > 0) : [];
 }
 

@@ -1,6 +1,8 @@
 import * as path from 'node:path';
 import { WorkspaceEdit } from 'vscode-languageserver/node';
 import {
+  LibraryCollisionsParams,
+  LibraryCollisionsResult,
   LibraryInsertParams,
   LibraryInsertResult,
   LibraryListingResult,
@@ -18,12 +20,24 @@ import { semanticModelOf } from '../core/semantics/model';
 import { locateRoadFile } from '../core/semantics/roadFiles';
 import { roadSignalsOf } from '../core/semantics/roadNetwork';
 import { diskRef, nodeFileSystem, SourceRef } from '../core/sources';
-import { entityKinds, freeEntities, guessPlayer, insertModuleGroup, isEntityKey, mainShape, moduleRoles } from '../core/libraryInsert';
+import {
+  entityKinds,
+  freeEntities,
+  guessPlayer,
+  insertModuleGroup,
+  isEntityKey,
+  mainShape,
+  moduleRoles,
+  scriptedActors,
+} from '../core/libraryInsert';
+import { Flattener } from '../core/flatten';
+import { removeRunFolder, runScenario } from '../esmini/run';
 import { LineIndex } from '../core/text';
 import { listTemplates, templateOutputs } from '../libraries';
 import { filePathOf } from '../uris';
 import { Workspace } from '../workspace';
 import { invalidParams, refOf } from './commands';
+import { stringList } from './esminiRun';
 
 function summary(module: LibraryModule): LibraryModuleSummary {
   return {
@@ -156,6 +170,31 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
     .reduce((sum, change) => sum + lineCount(change.text) - lineCount(text.slice(change.start, change.end)), 0);
   const line = at.line + (inserted.text.startsWith('\n') ? 1 : 0) + added;
   return { ...result, edit, groupName: inserted.groupName, line, ...(entities.added.length > 0 ? { added: entities.added } : {}) };
+}
+
+/**
+ * After an insert: the main as the editor has it, run headless in esmini to its end (a few tenths of a second for a
+ * composition of a few modules), and the collisions between its scripted actors (scriptedActors), for a notice that
+ * never holds the edit back. The run's folder is removed at once.
+ */
+export async function libraryCollisions(workspace: Workspace, params: LibraryCollisionsParams): Promise<LibraryCollisionsResult> {
+  const ref = await refOf(workspace, params?.uri);
+  const text = await workspace.store.readText(ref);
+  const scripted = scriptedActors(text);
+  const run = await runScenario(new Flattener(workspace.store), ref, {
+    esminiPath: typeof params.esminiPath === 'string' && params.esminiPath ? params.esminiPath : undefined,
+    roadPath: stringList(params.roadPath),
+    base: workspace.folders[0],
+  });
+  try {
+    if (run.outcome !== 'ok' && run.outcome !== 'errors') return { ran: false, message: run.message, collisions: [] };
+    const collisions = (run.collisions ?? [])
+      .filter((collision) => collision.entities.every((entity) => scripted.has(entity)))
+      .map(({ entities, time }) => ({ entities, time: time ?? 0 }));
+    return { ran: true, message: run.message, collisions };
+  } finally {
+    removeRunFolder(run);
+  }
 }
 
 /**

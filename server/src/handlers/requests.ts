@@ -10,7 +10,13 @@ import {
   RunEsminiRequest,
   StructureRequest,
 } from '../../../common/src/protocol';
-import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from '../../../common/src/libraryProtocol';
+import {
+  LibraryCollisionsRequest,
+  LibraryInsertRequest,
+  LibraryModulesRequest,
+  NewFromTemplateRequest,
+  TemplatesRequest,
+} from '../../../common/src/libraryProtocol';
 import { RunTraceRequest, SceneRequest } from '../../../common/src/sceneProtocol';
 import { SourceRef } from '../core/sources';
 import { OpenDocument } from '../documents';
@@ -25,7 +31,7 @@ import { distributionLenses } from '../features/distributions';
 import { documentLinks } from '../features/documentLinks';
 import { hover } from '../features/hover';
 import { expressionHints } from '../features/inlayHints';
-import { libraryInsert, libraryModules, newFromTemplate, templates } from '../features/library';
+import { libraryCollisions, libraryInsert, libraryModules, newFromTemplate, templates } from '../features/library';
 import { newScenario } from '../features/newScenario';
 import { packCommand } from '../features/pack';
 import { preview } from '../features/preview';
@@ -337,6 +343,12 @@ export const REQUESTS: Record<string, (context: ServerContext, method: string) =
     context.connection.onRequest(
       LibraryInsertRequest,
       request(context, method, (params) => libraryInsert(context.workspace, params)),
+    ),
+  // After an insert: the main run headless in esmini, and which of its scripted actors touch.
+  [LibraryCollisionsRequest.method]: (context, method) =>
+    context.connection.onRequest(
+      LibraryCollisionsRequest,
+      request(context, method, (params) => libraryCollisions(context.workspace, params)),
     ),
   // New Scenario from Template: the templates, then the files of a new scenario (the client writes them).
   [TemplatesRequest.method]: (context, method) =>
