@@ -3004,6 +3004,23 @@ describe('export --target carla, bad input', () => {
   });
   inTemporaryFolderEach('m2s-carla-bad-', (folder) => (out = folder));
 
+  it('a catalog entry that is not found: exit 1 naming it and where to put its catalog, nothing written', async () => {
+    const text = fs
+      .readFileSync(scenario(), 'utf8')
+      .replace(
+        /<Vehicle name="vehicle\.lincoln\.mkz_2017"[\s\S]*?<\/Vehicle>/,
+        '<CatalogReference catalogName="MissingCars" entryName="nowhere_car"/>',
+      );
+    assert.match(text, /entryName="nowhere_car"/);
+    const result = await refusedExport(path.join(out, 'missing.xosc'), text);
+    const refusal = result.report.losses.find((loss) => loss.kind === 'refused');
+    assert.deepEqual([refusal?.element, refusal?.line], ['CatalogReference', lineHolding(text, 'nowhere_car')]);
+    assert.match(
+      refusal?.carla ?? '',
+      /ScenarioRunner stops loading at an unknown catalog entry; name the folder of the catalog file that declares 'MissingCars' in the scenario's CatalogLocations \(a Directory of its type's catalog, such as VehicleCatalog\), or write the entry inline/,
+    );
+  });
+
   it('an unknown blueprint in the table: exit 1 naming it, nothing written', async () => {
     const table = path.join(out, 'blueprints.json');
     fs.writeFileSync(table, JSON.stringify({ 'vehicle.lincoln.mkz_2017': 'vehicle.flying.carpet' }));

@@ -263,7 +263,7 @@ export async function exportTextForCarla(
       leftover,
       'CatalogReference',
       `catalog '${attr(leftover, 'catalogName')}' entry '${attr(leftover, 'entryName')}' is not found`,
-      'ScenarioRunner stops loading at an unknown catalog entry',
+      `ScenarioRunner stops loading at an unknown catalog entry; name the folder of the catalog file that declares '${attr(leftover, 'catalogName')}' in the scenario's CatalogLocations (a Directory of its type's catalog, such as VehicleCatalog), or write the entry inline`,
     );
   }
 
