@@ -8,6 +8,7 @@ import { LineIndex } from '../core/text';
 import {
   checkIndexInRange,
   checkInputExists,
+  failure,
   CliCommand,
   CliOutput,
   ExitCode,
@@ -22,13 +23,16 @@ import { mainOf, storeForInputs } from './inputs';
 import { CARLA_OPTION, carlaOptionHelp, carlaReleaseOption } from './options';
 import { readUtf8Exactly } from './fileSystem';
 
-export const EXPORT_HELP = `Export for CARLA's ScenarioRunner (modular2simple export INPUT --target carla -o OUT.xosc):
+export const EXPORT_HELP = `Export for CARLA's ScenarioRunner (modular2simple export INPUT... --target carla -o OUT.xosc|FOLDER):
   INPUT                     a .xosc, a modular main.xosc, an unpacked folder, a .mosc, or a
-                            ParameterValueDistribution file with --index I
+                            ParameterValueDistribution file with --index I; several inputs are
+                            exported in one process, each as FOLDER/NAME.xosc (NAME: the input's)
   --target carla            the simulator (the only one for now)
-  -o, --output OUT.xosc     where to write the OpenSCENARIO 1.0 file (never over an input)
+  -o, --output OUT.xosc     where to write the OpenSCENARIO 1.0 file (never over an input); with
+                            several inputs, the folder to write them into (made if absent)
   --report LOSSES.json      also write the loss report as JSON: {"losses": [{kind, file, line,
-                            element, what, carla}], ...}; written when the export is refused too
+                            element, what, carla}], ...}; written when the export is refused too;
+                            with several inputs, a folder for FOLDER/NAME.json
 ${carlaOptionHelp('refuses the export')}
   --blueprints FILE.json    {"car_white": "vehicle.audi.tt", ...}: entity names to CARLA blueprints
   --road TOWN|FILE.xodr     the road instead of the scenario's LogicFile
@@ -42,12 +46,16 @@ ${carlaOptionHelp('refuses the export')}
   Every $parameter and \${expression} is evaluated, catalog entries are inlined, 1.1-1.3 forms are written
   in 1.0 where the meaning is kept; what is not kept is listed (file:line, what ScenarioRunner does
   instead). A file whose meaning would be lost is refused: exit 1, nothing written.
-  Exit codes: 0 written (losses may be listed), 1 refused, 2 usage, 3 an output could not be written.`;
+  Exit codes: 0 written (losses may be listed), 1 refused, 2 usage, 3 an output could not be written;
+  with several inputs, the worst of theirs (each input is exported whatever the others gave).`;
 
+/** One input's export, as the command line asks for it. */
 interface ExportArguments {
   input: string;
   output: string;
   report: string | undefined;
+  /** Several inputs: the folder `output` and `report` lie in, made before they are written. */
+  folders: string[];
   index: bigint | undefined;
   scenarioPath: string[];
   quiet: boolean;
@@ -70,30 +78,69 @@ export const EXPORT_OPTIONS = {
   quiet: { type: 'boolean', short: 'q', default: false },
 } as const;
 
-function parse(argv: string[]): ExportArguments {
+function parse(argv: string[]): ExportArguments[] {
   const { values, positionals } = parseCommandLine(argv, EXPORT_OPTIONS);
-  if (positionals.length !== 1) throw new UsageError('export takes one input');
+  if (positionals.length === 0) throw new UsageError('export needs an input');
   if (values.target === undefined) throw new UsageError('export needs --target carla');
   if (values.target !== 'carla') throw new UsageError(`--target takes carla, not '${values.target}'`);
-  if (values.output === undefined) throw new UsageError('export needs -o OUT.xosc');
+  if (values.output === undefined)
+    throw new UsageError(positionals.length === 1 ? 'export needs -o OUT.xosc' : 'export of several inputs needs -o FOLDER');
   const release = carlaReleaseOption(values.carla);
-  return {
-    input: positionals[0],
-    output: values.output,
-    report: values.report,
-    index: wholeNumber(values.index, '--index'),
+  const index = wholeNumber(values.index, '--index');
+  const several = positionals.length > 1;
+  if (several && index !== undefined)
+    throw new UsageError('--index chooses the concrete scenario of one distribution file: export it alone');
+  const output = values.output;
+  const report = values.report;
+  if (several) for (const folder of [output, report]) if (folder !== undefined) notAFile(folder);
+  const names = several ? outputNames(positionals) : undefined;
+  const shared = {
+    index,
     scenarioPath: (values['scenario-path'] ?? []).flatMap(splitScenarioPath),
     quiet: values.quiet ?? false,
-    options: {
-      release,
-      outputPath: path.resolve(values.output),
-      blueprints: values.blueprints === undefined ? undefined : readBlueprints(values.blueprints),
-      road: values.road === undefined || values.road.toLowerCase().endsWith('.xodr') === false ? values.road : path.resolve(values.road),
-      ego: values.ego,
-      force: values.force ?? false,
-      roadFolders: (values['road-path'] ?? []).flatMap(splitScenarioPath).map((folder) => path.resolve(folder)),
-    },
+    blueprints: values.blueprints === undefined ? undefined : readBlueprints(values.blueprints),
   };
+  return positionals.map((input, at) => {
+    const name = names?.[at];
+    const written = name === undefined ? output : path.join(output, name + '.xosc');
+    return {
+      input,
+      output: written,
+      report: name === undefined || report === undefined ? report : path.join(report, name + '.json'),
+      folders: name === undefined ? [] : [output, ...(report === undefined ? [] : [report])],
+      index: shared.index,
+      scenarioPath: shared.scenarioPath,
+      quiet: shared.quiet,
+      options: {
+        release,
+        outputPath: path.resolve(written),
+        blueprints: shared.blueprints,
+        road: values.road === undefined || values.road.toLowerCase().endsWith('.xodr') === false ? values.road : path.resolve(values.road),
+        ego: values.ego,
+        force: values.force ?? false,
+        roadFolders: (values['road-path'] ?? []).flatMap(splitScenarioPath).map((folder) => path.resolve(folder)),
+      },
+    };
+  });
+}
+
+/** Several inputs are written into a folder: one that is a file is a usage error before anything is read. */
+function notAFile(folder: string): void {
+  if (fs.existsSync(folder) && !fs.statSync(folder).isDirectory())
+    throw new UsageError(`with several inputs, -o and --report name folders, and ${folder} is a file`);
+}
+
+/** Each input's name in the output folder (a folder input's own name, else its file name without .xosc or .mosc); two alike are a usage error. */
+function outputNames(inputs: string[]): string[] {
+  const names = inputs.map((input) => path.basename(path.resolve(input)).replace(/\.(xosc|mosc)$/i, ''));
+  const seen = new Map<string, string>();
+  names.forEach((name, at) => {
+    const earlier = seen.get(name.toLowerCase());
+    if (earlier !== undefined)
+      throw new UsageError(`${earlier} and ${inputs[at]} would both be written as ${name}.xosc: export one of them on its own`);
+    seen.set(name.toLowerCase(), inputs[at]);
+  });
+  return names;
 }
 
 /** `line L, column C` of an offset in a file's text, for a message a user can find the place by. */
@@ -200,9 +247,38 @@ function reportHeader(args: ExportArguments): { input: string; output: string; t
   return { input: path.resolve(args.input), output: path.resolve(args.output), target: 'carla', carla: args.options.release };
 }
 
-/** `modular2simple export INPUT --target carla -o OUT.xosc [--report LOSSES.json] [--carla 0.9.15|0.9.16]`. */
+/** `modular2simple export INPUT... --target carla -o OUT.xosc|FOLDER [--report LOSSES.json|FOLDER] [--carla 0.9.15|0.9.16]`. */
 async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
-  const args = parse(argv);
+  const exports = parse(argv);
+  if (exports.length === 1) return exportOne(exports[0], io);
+  // One process for them all: a library's exports pay node's start and the bundle's once.
+  let worst: number = ExitCode.ok;
+  let written = 0;
+  for (const args of exports) {
+    let code: number;
+    try {
+      code = await exportOne(args, io);
+    } catch (error) {
+      const told = failure(error);
+      if (!told) throw error;
+      io.err(told.message);
+      code = told.code;
+    }
+    if (code === ExitCode.ok) written++;
+    worst = Math.max(worst, code);
+  }
+  const quiet = exports[0].quiet;
+  if (!quiet || written < exports.length)
+    io.err(`modular2simple: exported ${written} of ${exports.length} inputs${written > 0 ? ` into ${exports[0].folders[0]}` : ''}`);
+  return worst;
+}
+
+/** Several inputs' folders, made when the first of their files is written: an export that writes nothing leaves none. */
+function makeFolders(args: ExportArguments): void {
+  for (const folder of args.folders) fs.mkdirSync(folder, { recursive: true });
+}
+
+async function exportOne(args: ExportArguments, io: CliOutput): Promise<number> {
   if (fs.existsSync(args.input) && isSameFile(args.input, args.output))
     throw new InputError(`refusing to write ${args.output}: it is the input; choose another output file`);
   let result: CarlaExport;
@@ -213,6 +289,7 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
     // The input refused before any export (a discarded concrete scenario, an unreadable distribution): --report still says why.
     if (error instanceof InputError && args.report !== undefined) {
       const report = { ...reportHeader(args), written: false, refused: error.message, road: null, ego: null, losses: [] };
+      makeFolders(args);
       const code = await write(
         [
           {
@@ -262,6 +339,7 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
       `modular2simple: export refused: ${result.refused ?? 'unknown reason'}; nothing was written${args.report ? ' but the report' : ''}`,
     );
     if (reportOutput.length > 0) {
+      makeFolders(args);
       const code = await write(reportOutput, io, args.quiet);
       if (code !== ExitCode.ok) return code;
     }
@@ -270,6 +348,7 @@ async function exportCommand(argv: string[], io: CliOutput): Promise<number> {
   const counts =
     result.losses.length === 0 ? 'nothing lost' : `${result.losses.length} loss${result.losses.length === 1 ? '' : 'es'} listed above`;
   // A road packed with the scenario goes beside the export that names it, as flatten writes it.
+  makeFolders(args);
   const files = await writablePackagedFiles(result.files ?? [], args.output, io, args.quiet);
   for (const file of files) fs.mkdirSync(path.dirname(file.path), { recursive: true });
   return write(
