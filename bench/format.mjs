@@ -109,9 +109,14 @@ let formatted = text;
   for (const line of lines) starts.push(starts[starts.length - 1] + line.length + 1);
   /** @param {{ line: number, character: number }} position */
   const offset = (position) => starts[position.line] + position.character;
-  for (const edit of [...edits].sort((a, b) => offset(b.range.start) - offset(a.range.start))) {
-    formatted = formatted.slice(0, offset(edit.range.start)) + edit.newText + formatted.slice(offset(edit.range.end));
+  // One pass in document order: slicing the whole text once per edit took minutes of this process's CPU.
+  const pieces = [];
+  let position = 0;
+  for (const edit of [...edits].sort((a, b) => offset(a.range.start) - offset(b.range.start))) {
+    pieces.push(formatted.slice(position, offset(edit.range.start)), edit.newText);
+    position = offset(edit.range.end);
   }
+  formatted = pieces.join('') + formatted.slice(position);
 }
 await connection.sendNotification('textDocument/didOpen', {
   textDocument: { uri: formattedUri, languageId: 'xosc', version: 1, text: formatted },
