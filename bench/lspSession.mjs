@@ -43,8 +43,9 @@ export function cpuMs(pid) {
  * @param {string} server
  * @param {string} folder
  * @param {Record<string, unknown>} [settings]
+ * @param {Record<string, unknown>} [workspaceCapabilities] beside `configuration` (a refactoring's `workspaceEdit`)
  */
-export async function startServer(server, folder, settings = {}) {
+export async function startServer(server, folder, settings = {}, workspaceCapabilities = {}) {
   const child = spawn(process.execPath, [...nodeArgs, server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
   const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
   /** @type {Map<string, { version: number, resolve: (diagnostics: import('vscode-languageserver-protocol').Diagnostic[]) => void }>} */
@@ -72,7 +73,7 @@ export async function startServer(server, folder, settings = {}) {
     processId: process.pid,
     rootUri: uriOf(folder),
     workspaceFolders: [{ uri: uriOf(folder), name: 'bench' }],
-    capabilities: { workspace: { configuration: true }, window: { workDoneProgress: true } },
+    capabilities: { workspace: { configuration: true, ...workspaceCapabilities }, window: { workDoneProgress: true } },
   });
   const started = now();
   await connection.sendNotification('initialized', {});

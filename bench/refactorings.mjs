@@ -2,12 +2,11 @@
 // Extract to a simple scenario on a group's start tag of a plain scenario, Extract to catalog on a
 // Maneuver of it, Make overridable on an
 // attribute of a simple scenario, Inline on a referencing group of a main. Figures, not a timed test.
-import { spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
-import { createProtocolConnection, StreamMessageReader, StreamMessageWriter } from 'vscode-languageserver/node';
+import { fileURLToPath } from 'node:url';
+import { now, startServer, uriOf } from './lspSession.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const server = path.join(root, 'dist', 'server.js');
@@ -17,10 +16,6 @@ if (!existsSync(server)) {
   console.error('dist/server.js is missing: run npm run build first');
   process.exit(1);
 }
-
-const now = () => Number(process.hrtime.bigint()) / 1e6;
-/** @param {string} file */
-const uriOf = (file) => pathToFileURL(file).href;
 
 /**
  * @param {number} index
@@ -142,28 +137,14 @@ const files = {
 };
 for (const [name, text] of Object.entries(files)) writeFileSync(path.join(folder, name), text);
 
-const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
-const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
-/** @type {Map<string, (value?: unknown) => void>} */
-const published = new Map();
-connection.onNotification('textDocument/publishDiagnostics', (params) => published.get(params.uri)?.());
-connection.onNotification('window/logMessage', () => {});
-connection.onRequest('workspace/configuration', (params) => params.items.map(() => ({})));
-connection.onRequest('window/workDoneProgress/create', () => null);
-connection.onRequest('client/registerCapability', () => null);
-connection.listen();
-await connection.sendRequest('initialize', {
-  processId: process.pid,
-  rootUri: uriOf(folder),
-  workspaceFolders: [{ uri: uriOf(folder), name: 'bench' }],
-  capabilities: { workspace: { configuration: true, workspaceEdit: { documentChanges: true, resourceOperations: ['create'] } } },
-});
-await connection.sendNotification('initialized', {});
+// As the editor starts it (its node flags), with the workspace edits a refactoring answers with.
+const session = await startServer(server, folder, {}, { workspaceEdit: { documentChanges: true, resourceOperations: ['create'] } });
+const connection = session.connection;
 
 /** @param {string} name */
 async function open(name) {
   const uri = uriOf(path.join(folder, name));
-  const diagnosed = new Promise((resolve) => published.set(uri, resolve));
+  const diagnosed = session.diagnosticsFor(uri, 1);
   await connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xml', version: 1, text: files[name] } });
   await diagnosed;
   return uri;
@@ -215,8 +196,6 @@ try {
   // Every kind at once, as an editor asks when the light bulb shows.
   await actionLatency('plain.xosc', '<ManeuverGroup name="G', 3, undefined, 'refactor.extract.simpleScenario');
 } finally {
-  await connection.sendRequest('shutdown');
-  await connection.sendNotification('exit');
-  connection.dispose();
+  await session.stop();
   rmSync(folder, { recursive: true, force: true });
 }
