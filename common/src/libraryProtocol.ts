@@ -3,6 +3,7 @@
  * for both sides (both bundles import this file).
  */
 import { RequestType, WorkspaceEdit } from 'vscode-languageserver-protocol';
+import type { RunCollision } from './collisions';
 
 export interface LibraryParameterSummary {
   key: string;
@@ -116,7 +117,7 @@ export interface LibraryCollisionsResult {
   ran: boolean;
   message: string;
   /** Where two actors of the main's groups began to touch, but for an entity a library group names as its ego (its driver under test). */
-  collisions: { entities: [string, string]; time: number }[];
+  collisions: RunCollision[];
 }
 
 export const LibraryCollisionsRequest = new RequestType<LibraryCollisionsParams, LibraryCollisionsResult, void>(

@@ -94,11 +94,16 @@ function parse(argv: string[]): ExportArguments[] {
   const report = values.report;
   if (several) for (const folder of [output, report]) if (folder !== undefined) notAFile(folder);
   const names = several ? outputNames(positionals) : undefined;
-  const shared = {
-    index,
-    scenarioPath: (values['scenario-path'] ?? []).flatMap(splitScenarioPath),
-    quiet: values.quiet ?? false,
+  // What every input's export shares; each adds where it is written.
+  const scenarioPath = (values['scenario-path'] ?? []).flatMap(splitScenarioPath);
+  const quiet = values.quiet ?? false;
+  const options = {
+    release,
     blueprints: values.blueprints === undefined ? undefined : readBlueprints(values.blueprints),
+    road: values.road === undefined || values.road.toLowerCase().endsWith('.xodr') === false ? values.road : path.resolve(values.road),
+    ego: values.ego,
+    force: values.force ?? false,
+    roadFolders: (values['road-path'] ?? []).flatMap(splitScenarioPath).map((folder) => path.resolve(folder)),
   };
   return positionals.map((input, at) => {
     const name = names?.[at];
@@ -108,18 +113,10 @@ function parse(argv: string[]): ExportArguments[] {
       output: written,
       report: name === undefined || report === undefined ? report : path.join(report, name + '.json'),
       folders: name === undefined ? [] : [output, ...(report === undefined ? [] : [report])],
-      index: shared.index,
-      scenarioPath: shared.scenarioPath,
-      quiet: shared.quiet,
-      options: {
-        release,
-        outputPath: path.resolve(written),
-        blueprints: shared.blueprints,
-        road: values.road === undefined || values.road.toLowerCase().endsWith('.xodr') === false ? values.road : path.resolve(values.road),
-        ego: values.ego,
-        force: values.force ?? false,
-        roadFolders: (values['road-path'] ?? []).flatMap(splitScenarioPath).map((folder) => path.resolve(folder)),
-      },
+      index,
+      scenarioPath,
+      quiet,
+      options: { ...options, outputPath: path.resolve(written) },
     };
   });
 }

@@ -120,8 +120,6 @@ function mainRef(input: string): SourceRef {
   return input.toLowerCase().endsWith('.mosc') ? childRef(diskRef(input), 'main.xosc') : diskRef(input);
 }
 
-const fixed = shownFixed;
-
 function entityFields(entity: EntityState): Record<string, number> {
   return {
     x: entity.x,
@@ -491,7 +489,7 @@ export class ScenarioDebugSession extends DebugSession {
      */
     let stride = 1;
     const pause = () =>
-      this.stopWith({ reason: 'pause', description: `Paused at ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
+      this.stopWith({ reason: 'pause', description: `Paused at ${shownFixed(simulation.time)} s`, firings: [], breakpointIds: [] });
     // A pause is read after every step from the supervisor's page.
     const page = sessionPage;
     const pauseCounted = page ? () => page.pauseRequests() !== pausesBefore : () => false;
@@ -500,7 +498,12 @@ export class ScenarioDebugSession extends DebugSession {
       try {
         reportProgress?.({ time: simulation.time, what: 'stepping on from there' });
         if (mode === 'step' && stepEnded)
-          return this.stopWith({ reason: 'step', description: `Stepped to ${fixed(simulation.time)} s`, firings: [], breakpointIds: [] });
+          return this.stopWith({
+            reason: 'step',
+            description: `Stepped to ${shownFixed(simulation.time)} s`,
+            firings: [],
+            breakpointIds: [],
+          });
         // Steps in slices of a few milliseconds, so that requests (a change of breakpoints) are read between them; a pause
         // is read after every step from the supervisor's page, else here.
         if (this.pauseRequested) return pause();
@@ -583,7 +586,7 @@ export class ScenarioDebugSession extends DebugSession {
   private finished(simulation: Simulation): void {
     this.running = false;
     this.publishState(simulation, true);
-    this.output(`The scenario ended at ${fixed(simulation.time)} s\n`);
+    this.output(`The scenario ended at ${shownFixed(simulation.time)} s\n`);
     this.end();
   }
 
@@ -594,7 +597,7 @@ export class ScenarioDebugSession extends DebugSession {
     stepOutOf: string | undefined,
   ): Stop | undefined {
     const firings = events.filter((event) => event.type === 'Condition');
-    if (mode === 'step') return { reason: 'step', description: `Stepped to ${fixed(simulation.time)} s`, firings, breakpointIds: [] };
+    if (mode === 'step') return { reason: 'step', description: `Stepped to ${shownFixed(simulation.time)} s`, firings, breakpointIds: [] };
     const transitions = events.filter((event) => event.type !== 'Condition');
     let stopOn: StoryboardEvent | undefined;
     if (mode === 'next' && transitions.length > 0) stopOn = transitions.find((event) => event.state === 'running') ?? transitions[0];
@@ -700,7 +703,7 @@ export class ScenarioDebugSession extends DebugSession {
     if (ids.length === 0) return undefined;
     const note = notes.length > 0 ? ` (${notes.join('; ')})` : '';
     if (!stopEvent)
-      return { reason: 'function breakpoint', description: `At ${fixed(simulation.time)} s${note}`, firings, breakpointIds: ids };
+      return { reason: 'function breakpoint', description: `At ${shownFixed(simulation.time)} s${note}`, firings, breakpointIds: ids };
     return {
       reason: 'breakpoint',
       description: `${describeEvent(stopEvent)}${note}`,
@@ -758,7 +761,7 @@ export class ScenarioDebugSession extends DebugSession {
       for (const event of events) {
         const where = event.mapped ? { source: event.mapped.source, line: event.mapped.range.start.line } : undefined;
         const data = event.reportedAtMs === undefined ? undefined : { element: event.element, reportedAtMs: event.reportedAtMs };
-        this.output(`[${fixed(event.time)}] ${describeEvent(event)}\n`, 'console', where, data);
+        this.output(`[${shownFixed(event.time)}] ${describeEvent(event)}\n`, 'console', where, data);
       }
       // The storyboard timeline follows the session: the same records as run --trace, files as absolute paths.
       this.sendStoryboard(events);
@@ -839,9 +842,9 @@ export class ScenarioDebugSession extends DebugSession {
         const running = simulation
           .running()
           .sort((a, b) => b.path.split('::').length - a.path.split('::').length || a.path.localeCompare(b.path));
-        for (const item of running) push(item.mapped, `${item.type} ${item.name} (running since ${fixed(item.since)} s)`, item.path);
+        for (const item of running) push(item.mapped, `${item.type} ${item.name} (running since ${shownFixed(item.since)} s)`, item.path);
       }
-      if (this.frames.length === 0) this.frames.push({ place: undefined, label: `Storyboard at ${fixed(simulation?.time)} s` });
+      if (this.frames.length === 0) this.frames.push({ place: undefined, label: `Storyboard at ${shownFixed(simulation?.time)} s` });
       const frames = this.frames.map((frame, index) => {
         const source = frame.place ? this.sourceOf(frame.place.source) : undefined;
         const line = frame.place ? this.convertDebuggerLineToClient(frame.place.range.start.line) : 0;
@@ -927,7 +930,7 @@ export class ScenarioDebugSession extends DebugSession {
           variablesReference: 0,
         },
         { name: 'esmini', value: reason?.detail ?? '—', variablesReference: 0 },
-        { name: 'time', value: fixed(firing.time, 3), variablesReference: 0 },
+        { name: 'time', value: shownFixed(firing.time, 3), variablesReference: 0 },
       ];
       const summary =
         reason?.measured !== undefined
@@ -942,10 +945,10 @@ export class ScenarioDebugSession extends DebugSession {
       const fields = entityFields(entity);
       const children = Object.entries(fields)
         .filter(([name]) => name !== 'heading')
-        .map(([name, value]) => ({ name, value: Number.isInteger(value) ? String(value) : fixed(value, 3), variablesReference: 0 }));
+        .map(([name, value]) => ({ name, value: Number.isInteger(value) ? String(value) : shownFixed(value, 3), variablesReference: 0 }));
       return {
         name: entity.name,
-        value: `x ${fixed(entity.x)}, y ${fixed(entity.y)}, speed ${fixed(entity.speed)} m/s, lane ${entity.laneId}`,
+        value: `x ${shownFixed(entity.x)}, y ${shownFixed(entity.y)}, speed ${shownFixed(entity.speed)} m/s, lane ${entity.laneId}`,
         variablesReference: this.handle(() => children),
         evaluateName: entity.name,
       };
@@ -955,7 +958,7 @@ export class ScenarioDebugSession extends DebugSession {
   private pairVariables(simulation: Simulation): DebugProtocol.Variable[] {
     return simulation.pairs().map((pair) => ({
       name: `${pair.from} → ${pair.to}`,
-      value: `gap ${fixed(pair.gap)} m, TTC ${pair.ttc === undefined ? 'none' : `${fixed(pair.ttc)} s`}`,
+      value: `gap ${shownFixed(pair.gap)} m, TTC ${pair.ttc === undefined ? 'none' : `${shownFixed(pair.ttc)} s`}`,
       variablesReference: 0,
       evaluateName: `gap(${pair.from}, ${pair.to})`,
     }));
@@ -977,7 +980,7 @@ export class ScenarioDebugSession extends DebugSession {
       if (entity) {
         const fields = entityFields(entity);
         response.body = {
-          result: `x ${fixed(entity.x)}, y ${fixed(entity.y)}, speed ${fixed(entity.speed)} m/s`,
+          result: `x ${shownFixed(entity.x)}, y ${shownFixed(entity.y)}, speed ${shownFixed(entity.speed)} m/s`,
           variablesReference: this.handle(() =>
             Object.entries(fields).map(([name, value]) => ({ name, value: String(value), variablesReference: 0 })),
           ),
