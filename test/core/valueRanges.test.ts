@@ -7,7 +7,7 @@ import { schemaFindingWords } from '../../server/src/core/diagnostics/schemaFind
 import { checkSchema } from '../../server/src/core/schema/validate';
 import { SCHEMA_VERSIONS, SchemaVersion } from '../../server/src/core/schema/model';
 import { analyzeDocument, CatalogLoader, semanticProblems } from '../../server/src/core/semantics';
-import { documentedBounds, inRange, rangeText, VALUE_RANGES, ValueRange } from '../../server/src/core/semantics/ranges';
+import { documentedBounds, inRange, rangeText, readingsOf, VALUE_RANGES, ValueRange } from '../../server/src/core/semantics/ranges';
 import { Simulator } from '../../server/src/core/profiles/simulators';
 import { diskRef, ScenarioStore } from '../../server/src/core/sources';
 import { parseXml } from '../../server/src/core/xml';
@@ -144,7 +144,10 @@ describe("value ranges (the ASAM model's documented ranges, per version)", () =>
           const problems = await outOfRange(text);
           const label = `${version} ${range.element} ${range.attribute}=${value}`;
           assert.equal(problems.length, 1, label);
-          assert.equal(problems[0].severity, range.esmini && !range.esmini.when ? 'warning' : 'error', label);
+          const unconditional = readingsOf(range.esmini).some(
+            (reading) => !reading.when && (!reading.versions || reading.versions.includes(version)),
+          );
+          assert.equal(problems[0].severity, unconditional ? 'warning' : 'error', label);
           assert.equal(textAt(text, problems[0].range), String(value), label);
           assert.ok(
             problems[0].message.includes(`is outside the standard's range ${rangeText(range)}`),
@@ -428,17 +431,34 @@ describe('value ranges in a schema-valid scenario', () => {
     assert.match(lane.message, /; what CARLA ScenarioRunner does with it is not recorded here; esmini takes the rate's magnitude/);
   });
 
-  it('a maxSteering in degrees (esmini uses it nowhere) and a negative lateral distance (esmini takes its magnitude) are warnings', async () => {
+  it('a maxSteering in degrees (esmini uses it nowhere) and a negative lateral distance (esmini takes its magnitude from 1.1 on) are warnings', async () => {
     const degrees = scenario().replace('maxSteering="0.5"', 'maxSteering="30"');
     const [steering] = await outOfRange(degrees);
     assert.equal(steering.severity, 'warning');
     assert.match(steering.message, /uses it nowhere/);
-    const [lateral] = await outOfRange(bare('1.0', 'LateralDistanceAction', 'distance', '-2.0'));
+    const [lateral] = await outOfRange(bare('1.1', 'LateralDistanceAction', 'distance', '-2.0'));
     assert.equal(lateral.severity, 'warning');
     assert.match(
       lateral.message,
       /LateralDistanceAction distance -2 \(from -2\.0\) is outside the standard's range \[0\.\.inf\[.*esmini uses the absolute value/,
     );
+  });
+
+  it('in a 1.0 file a negative distance is not taken as its magnitude: esmini keeps the sign (it puts the entity on the other side; measured with esmini 3.6)', async () => {
+    // esmini 3.6 on a 1.0 file, LateralDistanceAction -2 m from a car at y=-1.535: the ego ends at y=-3.48 (+2 m: y=0.41), with no warning; in a 1.1 file -2 and 2 both give 0.41.
+    const [lateral] = await outOfRange(bare('1.0', 'LateralDistanceAction', 'distance', '-2.0'), 'esmini');
+    assert.equal(lateral?.severity, 'warning', JSON.stringify(lateral));
+    assert.doesNotMatch(lateral.message, /esmini uses the absolute value/);
+    assert.match(lateral.message, /esmini keeps the sign in a 1\.0 file.*to the right of the referenced entity/);
+    // LongitudinalDistanceAction -20 m behind a car at x=140.5 in a 1.0 file: the ego ends ahead of it, at x=160.5 (20 m: 120.5).
+    for (const attributeName of ['distance', 'timeGap']) {
+      const [longitudinal] = await outOfRange(bare('1.0', 'LongitudinalDistanceAction', attributeName, '-20'), 'esmini');
+      assert.equal(longitudinal?.severity, 'warning', JSON.stringify(longitudinal));
+      assert.doesNotMatch(longitudinal.message, /esmini uses the absolute value/);
+      assert.match(longitudinal.message, /esmini keeps the sign in a 1\.0 file.*ahead of the referenced entity/);
+    }
+    const [later] = await outOfRange(bare('1.2', 'LongitudinalDistanceAction', 'distance', '-20'), 'esmini');
+    assert.match(later.message, /esmini uses the absolute value/);
   });
 
   it('in a 1.1 file the rules of 1.2 on (RoadPosition s) do not apply, the rules of 1.0 on (Dimensions) do', async () => {

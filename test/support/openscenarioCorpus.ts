@@ -78,7 +78,7 @@ export const GENUINELY_WRONG: Record<string, { problems: string[]; reason: strin
   'scenario_runner/VehicleLateralDistance.xosc': {
     problems: ['163:out-of-range'],
     reason:
-      "LateralDistanceAction distance='-2.0': the distance is [0..inf[ (the ASAM model's documented range); a 1.0 file has no displacement to name the side. A warning: esmini uses the absolute value",
+      "LateralDistanceAction distance='-2.0': the distance is [0..inf[ (the ASAM model's documented range); a 1.0 file has no displacement to name the side. A warning: esmini keeps the sign (to the right of hero)",
   },
 };
 

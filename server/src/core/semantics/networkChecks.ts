@@ -10,7 +10,7 @@ import { unknownTrafficSignalControllerWording } from '../diagnostics/unknownTra
 import { attribute, descendants, firstDescendant, XmlAttribute, XmlElement } from '../xml';
 import { at, numberOf } from './checks/support';
 import type { Finding, SemanticCheck, SemanticContext } from './checks/types';
-import { inRange, rangeText, ValueRange, valueRangesOf } from './ranges';
+import { inRange, rangeText, readingsOf, ValueRange, valueRangesOf } from './ranges';
 import { SemanticModel } from './types';
 import { elementsNamed } from './elementIndex';
 import { coreMemo } from '../memos';
@@ -253,8 +253,13 @@ export const valueRanges: SemanticCheck = (context) => {
         const written = value.attr.value.trim() === String(value.value) ? undefined : value.attr.value.trim();
         // Said for the simulator checked: ScenarioRunner's reading with carla where one is recorded, esmini's otherwise (named as such).
         const carla = context.simulator === 'carla';
-        const known = carla && range.carla ? range.carla : range.esmini;
-        const applies = known && (!known.when || textOf(context, element, known.when.attribute)?.text.trim() === known.when.value);
+        const carlaReadings = carla ? readingsOf(range.carla) : [];
+        const known = (carlaReadings.length > 0 ? carlaReadings : readingsOf(range.esmini)).find(
+          (reading) =>
+            (!reading.versions || reading.versions.includes(version)) &&
+            (!reading.when || textOf(context, element, reading.when.attribute)?.text.trim() === reading.when.value),
+        );
+        const isCarla = known !== undefined && carlaReadings.includes(known);
         findings.push({
           ...at(element, value.attr),
           ...outOfRangeWording({
@@ -264,10 +269,10 @@ export const valueRanges: SemanticCheck = (context) => {
             written,
             range: rangeText(range),
             modelClass: range.modelClass,
-            ...(applies && known
+            ...(known
               ? {
-                  reading: { by: known === range.carla ? 'CARLA ScenarioRunner' : 'esmini', text: known.reading },
-                  ...(carla && known !== range.carla ? { notRecordedFor: 'CARLA ScenarioRunner' } : {}),
+                  reading: { by: isCarla ? 'CARLA ScenarioRunner' : 'esmini', text: known.reading },
+                  ...(carla && !isCarla ? { notRecordedFor: 'CARLA ScenarioRunner' } : {}),
                 }
               : {}),
           }),

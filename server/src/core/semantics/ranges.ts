@@ -37,8 +37,8 @@ export interface ValueRange {
   source: string;
   /** A rule of its own checks this range, with a message of its own (core/semantics/networkChecks.ts). */
   checkedBy?: ProblemCode;
-  /** How esmini reads a value outside the range with one clear meaning (read in its sources): a warning that says both (SPEC 12). */
-  esmini?: SimulatorReading;
+  /** How esmini reads a value outside the range with one clear meaning (read in its sources): a warning that says both (SPEC 12); the first reading that applies. */
+  esmini?: SimulatorReading | readonly SimulatorReading[];
   /** How CARLA's ScenarioRunner runs such a value (read in its sources), said instead of esmini's with the simulator carla. */
   carla?: SimulatorReading;
 }
@@ -48,6 +48,14 @@ export interface SimulatorReading {
   reading: string;
   /** Only when the element's attribute has this value. */
   when?: { attribute: string; value: string };
+  /** Only in a file of these versions (esmini reads some values by the file's version). */
+  versions?: readonly SchemaVersion[];
+}
+
+/** The readings recorded for a simulator, in the order they are tried. */
+export function readingsOf(readings: SimulatorReading | readonly SimulatorReading[] | undefined): readonly SimulatorReading[] {
+  if (readings === undefined) return [];
+  return 'reading' in readings ? [readings] : readings;
 }
 
 type Bounds = Pick<ValueRange, 'min' | 'max' | 'minOpen' | 'maxOpen'>;
@@ -118,9 +126,29 @@ function rules(
 }
 
 // esmini 3.6 (EnvironmentSimulator/Modules/ScenarioEngine): ScenarioReader.cpp reads each of these, OSCPrivateAction.cpp runs them.
-const MAGNITUDE: SimulatorReading = {
-  reading: 'uses the absolute value (ScenarioReader.cpp warns "Negative distance ... Using absolute value")',
-};
+// From 1.1 on esmini takes the magnitude; in a 1.0 file (no displacement) the sign names the side, as measured with esmini 3.6 (qc20).
+const MAGNITUDE: readonly SimulatorReading[] = [
+  {
+    reading: 'uses the absolute value (ScenarioReader.cpp warns "Negative distance ... Using absolute value")',
+    versions: ['1.1', '1.2', '1.3'],
+  },
+];
+const LATERAL_SIGN: readonly SimulatorReading[] = [
+  ...MAGNITUDE,
+  {
+    reading:
+      'keeps the sign in a 1.0 file, which has no displacement: a negative distance keeps the entity to the right of the referenced entity instead of to its left (ScenarioReader.cpp takes the absolute value only from 1.1; OSCPrivateAction.cpp LatDistanceAction::GetDistanceError)',
+    versions: ['1.0'],
+  },
+];
+const LONGITUDINAL_SIGN: readonly SimulatorReading[] = [
+  ...MAGNITUDE,
+  {
+    reading:
+      'keeps the sign in a 1.0 file, which has no displacement: a negative distance or timeGap keeps the entity ahead of the referenced entity instead of behind it (ScenarioReader.cpp takes the absolute value only from 1.1; OSCPrivateAction.cpp LongDistanceAction::Step)',
+    versions: ['1.0'],
+  },
+];
 const RATE_MAGNITUDE: SimulatorReading = {
   reading: "takes the rate's magnitude, its sign from the direction of the change (OSCPrivateAction.cpp TransitionDynamics::UpdateRate)",
   when: { attribute: 'dynamicsDimension', value: 'rate' },
@@ -191,8 +219,8 @@ export const VALUE_RANGES: readonly ValueRange[] = [
   ...rules('GeoPosition', ['longitudeDeg'], '[-180..180]', FROM_1_2),
   ...rules('LaneOffsetActionDynamics', ['maxLateralAcc'], '[0..inf[', ALL),
   ...rules('LanePosition', ['s'], '[0..inf[', ALL),
-  ...rules('LateralDistanceAction', ['distance'], '[0..inf[', ALL, { esmini: MAGNITUDE }),
-  ...rules('LongitudinalDistanceAction', ['distance', 'timeGap'], '[0..inf[', ALL, { esmini: MAGNITUDE }),
+  ...rules('LateralDistanceAction', ['distance'], '[0..inf[', ALL, { esmini: LATERAL_SIGN }),
+  ...rules('LongitudinalDistanceAction', ['distance', 'timeGap'], '[0..inf[', ALL, { esmini: LONGITUDINAL_SIGN }),
   ...rules('ManeuverGroup', ['maximumExecutionCount'], '[1..inf[', ALL),
   ...rules('MiscObject', ['mass'], '[0..inf[', ALL),
   ...rules('Nurbs', ['order'], '[2..inf[', ALL),
