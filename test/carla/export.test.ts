@@ -1313,6 +1313,38 @@ function storyRoutes(parts: {
   });
 }
 
+/**
+ * storyRoutesScenario('time') with speeds its story changes at known times: Ego's step to 5 m/s at 4 s (its route starts at 1 s),
+ * the Follower's linear change to 9 m/s over `followerSeconds` from 0.5 s, and the Follower's route started by its own TraveledDistanceCondition (20 m).
+ */
+function changedSpeedStoryRoutes(followerSeconds: number): string {
+  const timed = storyRoutesScenario('time');
+  const onDistance = timed.replace(
+    /(name="FollowerRouteStarts" delay="0" conditionEdge="none">\s*)<ByValueCondition>.*?<\/ByValueCondition>/,
+    '$1<ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Follower"/></TriggeringEntities><EntityCondition><TraveledDistanceCondition value="20"/></EntityCondition></ByEntityCondition>',
+  );
+  assert.match(onDistance, /TraveledDistanceCondition value="20"/);
+  return onDistance.replace(
+    '</Story>',
+    `</Story>
+    ${slowerStory('Ego', speedChange('step', 0, 'time', 5), 4, 'Follower', speedChange('linear', followerSeconds, 'time', 9), 0.5).replace(/name="(\w+)(Group|Maneuver)"/g, 'name="$1Speed$2"')}`,
+  );
+}
+
+/** `text` written at `original` and exported: each AcquirePositionAction mapped (approximated, at its line), none left in the written file. */
+async function exportedStoryRoutes(original: string, text: string): Promise<{ result: Exported; mapped: Exported['report']['losses'] }> {
+  fs.writeFileSync(original, text);
+  const result = await exportFile(original, path.join(path.dirname(original), 'exported.xosc'));
+  assert.equal(result.code, 0, result.stderr);
+  const mapped = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction');
+  assert.deepEqual(
+    mapped.map((loss) => [loss.kind, loss.line]),
+    [...text.matchAll(/<AcquirePositionAction>/g)].map((match) => ['approximated', text.slice(0, match.index).split('\n').length]),
+  );
+  assert.equal(/<AcquirePositionAction/.test(fs.readFileSync(result.output, 'utf8')), false);
+  return { result, mapped };
+}
+
 describe('export --target carla, story routes under 0.9.16 written as trajectories from where the actor is expected', function () {
   this.timeout(300_000);
   let out: string;
@@ -1326,23 +1358,13 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
       requireEsmini(this);
       requireCarlaHarness(this);
       const original = path.join(out, 'routes.xosc');
-      const text = storyRoutesScenario(trigger);
-      fs.writeFileSync(original, text);
-      const result = await exportFile(original, path.join(out, 'exported.xosc'));
-      assert.equal(result.code, 0, result.stderr);
-      const mapped = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction');
-      assert.deepEqual(
-        mapped.map((loss) => [loss.kind, loss.line]),
-        [...text.matchAll(/<AcquirePositionAction>/g)].map((match) => ['approximated', text.slice(0, match.index).split('\n').length]),
-      );
+      const { result, mapped } = await exportedStoryRoutes(original, storyRoutesScenario(trigger));
       const expected = trigger === 'distance' ? '5 m along its lane from its start' : '10 m along its lane from its start';
       assert.match(
         mapped[0].what,
         new RegExp(`from where 'Ego' is expected when the action starts, ${expected}.*roads 2 > 15 > 1, lane -1 from s 1[56]\\d`),
       );
       assert.match(mapped[0].what, /catches up or waits if it is elsewhere/);
-      const written = fs.readFileSync(result.output, 'utf8');
-      assert.equal(/<AcquirePositionAction/.test(written), false);
       const verdict = await assertBuilt(result.output, { tree: true });
       // Each route built as ChangeActorWaypoints with a time for every vertex.
       const built = verdict.waypoints ?? [];
@@ -1352,6 +1374,68 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
       // travel at most (0.05 s at 14 m/s), as esmini starts an Event the step after its condition holds.
       await assertMovesAlike(original, result.output, 25, 0.71);
     });
+
+  it("a vehicle whose story changes its speed at known times, its story route started by a time or by a distance that speed reaches at a known time: each vertex timed by that speed from the route's start; ScenarioRunner builds it with every story element, esmini runs it as the original (issue 26)", async function () {
+    requireEsmini(this);
+    requireCarlaHarness(this);
+    const original = path.join(out, 'routes.xosc');
+    // Ego at 10 m/s, its route at 1 s, 5 m/s from 4 s; the Follower at 14 m/s, linear to 9 m/s over 0.8 s from 0.5 s, its route after 20 m.
+    const { result, mapped } = await exportedStoryRoutes(original, changedSpeedStoryRoutes(0.8));
+    assert.match(
+      mapped[0].what,
+      /from where 'Ego' is expected when the action starts, 10 m along its lane from its start \(its SimulationTimeCondition 1 s, at 1 s\).*timed by its speed as esmini drives it, 10 m\/s, then 5 m\/s from 4 s by the SpeedAction at routes\.xosc:\d+: ScenarioRunner keeps a vehicle on its trajectory/,
+    );
+    // 14 m/s for 0.5 s (7 m), 9.2 m over the 0.8 s to 9 m/s, 3.8 m at 9 m/s: the Follower's route starts at 1.7222 s.
+    assert.match(
+      mapped[1].what,
+      /from where 'Follower' is expected when the action starts, 20 m along its lane from its start \(its TraveledDistanceCondition 20 m, at 1\.7222 s\).*14 m\/s, then 9 m\/s from 0\.5 s \(linear over 0\.8 s\)/,
+    );
+    assert.doesNotMatch(mapped[1].what, /esmini ends it/);
+    const verdicts = await harnessVerdicts([result.output], { tree: true });
+    const verdict = verdicts.get(path.resolve(result.output));
+    assert.equal(verdict?.status, 'OK', JSON.stringify(verdict));
+    assertNoSilentDrop([result], verdicts);
+    // Each route built as ChangeActorWaypoints with a time for every vertex; Ego's first 3 s at 10 m/s, then 5 m/s: not all at 10 m/s.
+    const built = verdict?.waypoints ?? [];
+    assert.deepEqual(built.map(([, name]) => name).sort(), ['EgoAcquires', 'FollowerAcquires']);
+    for (const [, name, points, times] of built) assert.ok(points > 100 && points === times, `${name}: ${points} points, ${times} times`);
+    const egoLast = built.find(([, name]) => name === 'EgoAcquires')?.[4] ?? 0;
+    // 30 m at 10 m/s from 1 s to 4 s, then 141.1 m at 5 m/s: 31.2 s, where at 10 m/s throughout it would be 17.1 s.
+    assert.equal(Math.round(egoLast * 10) / 10, 31.2);
+    // esmini: a trajectory's actor moved by the speed before a step's change, a route's by the speed after (5 m/s x 0.05 s), and one step's travel at the start.
+    await assertMovesAlike(original, result.output, 25, 0.71);
+  });
+
+  it("a vehicle whose speed change is still running when its story route starts: written, naming that esmini ends that change there; one whose speed changes at a time known only as the run goes: refused at the route's line, naming why (issue 26)", async () => {
+    const original = path.join(out, 'routes.xosc');
+    // The Follower's change to 9 m/s runs from 0.5 s to 2.5 s; its route starts at 1.5218 s (14 t - 1.25 t² = 13 after 7 m).
+    const running = changedSpeedStoryRoutes(2);
+    fs.writeFileSync(original, running);
+    const result = await exportFile(original, path.join(out, 'exported.xosc'));
+    assert.equal(result.code, 0, result.stderr);
+    const follower = result.report.losses.filter((loss) => loss.element === 'AcquirePositionAction')[1];
+    assert.match(
+      follower?.what ?? '',
+      /\(its TraveledDistanceCondition 20 m, at 1\.5218 s\).*the SpeedAction at routes\.xosc:\d+ is still changing the speed when the action starts, and esmini ends it there when it runs the export .*OSCPrivateAction\.hpp FollowTrajectory\), keeping 11\.4455 m\/s, where ScenarioRunner drives by the times/,
+    );
+    fs.rmSync(result.output);
+    // Ego's change on a distance: when it comes is known only as the run goes.
+    const onDistance = changedSpeedStoryRoutes(0.8).replace(
+      '<ByValueCondition><SimulationTimeCondition value="4" rule="greaterThan"/></ByValueCondition>',
+      '<ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="Ego"/></TriggeringEntities><EntityCondition><TraveledDistanceCondition value="40"/></EntityCondition></ByEntityCondition>',
+    );
+    assert.match(onDistance, /TraveledDistanceCondition value="40"/);
+    const refused = await refusedExport(original, onDistance);
+    const refusals = refused.report.losses.filter((loss) => loss.kind === 'refused');
+    assert.deepEqual(
+      refusals.map((loss) => [loss.element, loss.line]),
+      [['AcquirePositionAction', lineHolding(onDistance, '<AcquirePositionAction>')]],
+    );
+    assert.match(
+      refusals[0].carla,
+      /the speed of 'Ego' is not certain from the run's start to the action's \(.*not only at known times: the SpeedAction at routes\.xosc:\d+ starts on TraveledDistanceCondition, not one SimulationTimeCondition, so when it starts is known only as the run goes\): where 'Ego' is when the action starts is known only as the scenario runs/,
+    );
+  });
 
   it("a story route whose start is known only as the scenario runs: refused at the action's line, naming why (issue 26)", async () => {
     const timed = storyRoutesScenario('time');

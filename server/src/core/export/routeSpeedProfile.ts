@@ -1,5 +1,5 @@
 /**
- * The speed of a vehicle along its Init route when its story changes that speed at known times, as esmini drives it: the
+ * The speed of a vehicle along its route (Init, or story from a start the profile fixes) when its story changes that speed at known times, as esmini drives it: the
  * route written as a trajectory keeps it in esmini (a trajectory without timing is followed at the entity's speed), and in
  * ScenarioRunner its vertex times do, since its vehicle controller drives to each vertex by its time whatever speed a
  * SpeedAction sets (CARLA_FACTS.vehicleSpeedChangeOnTrajectory). Known for SpeedActions to an absolute speed above 0, step or
@@ -94,6 +94,17 @@ function startOf(action: Node, where: string): number | string {
 export function speedAt(profile: SpeedProfile, time: number): number {
   const piece = profile.pieces.find((each) => time < each.until) ?? profile.pieces[profile.pieces.length - 1];
   return piece.speed + piece.acceleration * (Math.max(time, piece.from) - piece.from);
+}
+
+/** How far the actor has driven on the profile by `time` seconds from the run's start. */
+export function distanceAt(profile: SpeedProfile, time: number): number {
+  let covered = 0;
+  for (const piece of profile.pieces) {
+    if (time <= piece.from) break;
+    const span = Math.min(time, piece.until) - piece.from;
+    covered += piece.speed * span + (piece.acceleration * span * span) / 2;
+  }
+  return covered;
 }
 
 /** When the actor has covered `distance` metres on the profile. */

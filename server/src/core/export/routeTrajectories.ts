@@ -18,6 +18,7 @@ import { SR_ATOMICS, SR_PARSER } from '../profiles/scenarioRunner';
 import { roadPositionPose } from './trajectoryPoint';
 import {
   describeProfile,
+  distanceAt,
   FROM_TIME_ON,
   lineOf,
   routeSpeedProfile,
@@ -209,7 +210,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
       }`;
     }
   if (typeof starts === 'string') return starts;
-  const { speed, along, profile } = starts;
+  const { speed, along, profile, startTime = 0 } = starts;
   if (!(speed > 0)) return `'${actor}' keeps the speed ${speed}, and a trajectory at that speed has no times`;
   const start = startOf(tree, actor, road, walker);
   if (typeof start === 'string') return start;
@@ -258,7 +259,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
       // Times from the action's start: ScenarioRunner's controller counts them from the atomic's start (npc_vehicle_control.py run_step).
       return makeNode(
         'Vertex',
-        [['time', fourDecimals(profile ? timeAt(profile, length) : length / speed)]],
+        [['time', fourDecimals(profile ? Math.max(0, timeAt(profile, along + length) - startTime) : length / speed)]],
         [makeNode('Position', [], [lane])],
       );
     }),
@@ -266,15 +267,22 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   let timing = `timed at its speed ${fourDecimals(speed)} m/s`;
   if (profile) {
     // ScenarioRunner sets the Init speed again once the Init trajectory ends; esmini keeps the speed the story set.
-    const ends = timeAt(profile, length);
+    const ends = timeAt(profile, along + length);
     const endSpeed = speedAt(profile, ends);
     const stop = runStopTime(tree);
     const stopsBefore = stop !== undefined && stop <= ends;
     const fact = CARLA_FACTS.vehicleSpeedChangeOnTrajectory;
-    timing = `timed by its speed as esmini drives it, ${describeProfile(profile)}: ScenarioRunner ${fact.does} (${fact.source})${
-      stopsBefore ? `; the run stops at ${fourDecimals(stop)} s, before the route ends at ${fourDecimals(ends)} s` : ''
+    // esmini's FollowTrajectoryAction takes the longitudinal domain too (OSCPrivateAction.hpp FollowTrajectory), ending a speed change still running.
+    const cut = profile.changes.find(({ at, takes }) => at < startTime - 1e-9 && startTime < at + takes - 1e-9);
+    const esminiCut = cut
+      ? `; the SpeedAction at ${lineOf(cut.action) || 'a story line'} is still changing the speed when the action starts, and esmini ends it there when it runs the export (its FollowTrajectoryAction takes the longitudinal domain too: OSCPrivateAction.hpp FollowTrajectory), keeping ${fourDecimals(speed)} m/s, where ScenarioRunner drives by the times`
+      : '';
+    timing = `timed by its speed as esmini drives it, ${describeProfile(profile)}: ScenarioRunner ${fact.does} (${fact.source})${esminiCut}${
+      stopsBefore
+        ? `; the run stops at ${fourDecimals(stop)} s, before the route ends at ${fourDecimals(ends)} s${inInit ? '' : " from the run's start, its times counted"}`
+        : ''
     }`;
-    if (Math.abs(endSpeed - profile.start) > 1e-9 && !stopsBefore)
+    if (inInit && Math.abs(endSpeed - profile.start) > 1e-9 && !stopsBefore)
       return `'${actor}' ends its route at ${fourDecimals(ends)} s at ${fourDecimals(endSpeed)} m/s (its speed ${describeProfile(profile)}), and ScenarioRunner ${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.does} (${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.source}), ${fourDecimals(profile.start)} m/s, where esmini keeps ${fourDecimals(endSpeed)} m/s: the run would have to stop by then (a Storyboard StopTrigger of one SimulationTimeCondition), or the story bring it back to its Init speed`;
   }
   const name = attr(child(action, 'Route') ?? action, 'name') ?? action.name;
@@ -440,8 +448,10 @@ function fromWhereExpected(
 /** Where a route action finds its actor (a distance along its lane from its start), its speed then, and a walker's SpeedActions that start only after it. */
 interface RouteStart {
   speed: number;
-  /** A vehicle's speed over an Init route that its story changes at known times. */
+  /** A vehicle's speed from the run's start when its story changes it at known times: the route's vertices are timed by it. */
   profile?: SpeedProfile;
+  /** With a profile: when the route action starts, in seconds from the run's start. */
+  startTime?: number;
   along: number;
   how: string;
   later?: Node[];
@@ -461,7 +471,8 @@ function initRouteStart(tree: Node, actor: string, action: Node): RouteStart | s
  * Where a story route action finds its actor, as a distance driven along its lane from its start, and its speed then; or why
  * that is known only as the scenario runs. Known for an Event started by one condition: the actor's own TraveledDistanceCondition
  * (the actor standing until a step SpeedAction of the same Act sets its one speed, or keeping its Init speed from an Act that starts
- * at the run's start), or a SimulationTimeCondition at a speed kept from the Init, in an Act that starts at the run's start:
+ * at the run's start), or a SimulationTimeCondition at a speed kept from the Init, in an Act that starts at the run's start; for a
+ * vehicle whose story changes its speed at known times (routeSpeedProfile), either condition, the profile fixing where and when:
  * ScenarioRunner counts both from when the condition is first ticked (CARLA_FACTS.conditionsCountFromTheirStart), esmini from the run's.
  */
 function storyRouteStart(tree: Node, action: Node, actor: string, walker: boolean): RouteStart | string {
@@ -568,6 +579,18 @@ function laterSpeedActions(
   return found;
 }
 
+/** A vehicle's story route that starts at `time` s from the run's start on its speed profile: where it is then, and at what speed. */
+function profiledStart(profile: SpeedProfile, time: number, condition: string): RouteStart {
+  const along = distanceAt(profile, time);
+  return {
+    speed: speedAt(profile, time),
+    along,
+    profile,
+    startTime: time,
+    how: `${Number(along.toFixed(3))} m along its lane from its start (${condition}, at ${fourDecimals(time)} s)`,
+  };
+}
+
 /** storyRouteStart for the actor's speed without the actions `except` holds (the route action, a walker's later speeds). */
 function storyRouteStartAt(tree: Node, action: Node, actor: string, except: ReadonlySet<Node>, walker: boolean): RouteStart | string {
   const event = ancestor(action, 'Event');
@@ -593,10 +616,20 @@ function storyRouteStartAt(tree: Node, action: Node, actor: string, except: Read
     if (!(distance >= 0)) return `its TraveledDistanceCondition's value is not a distance: ${unknown}`;
     const story = kept === undefined ? storySpeedOf(tree, actor, except) : undefined;
     const speed = kept ?? (story && ancestor(story.action, 'Act') === act ? story.speed : undefined);
+    // A vehicle whose story changes its speed at known times reaches the distance at a known time too.
+    const profile = speed === undefined && !walker ? routeSpeedProfile(tree, actor, action) : undefined;
+    if (profile !== undefined && typeof profile !== 'string') {
+      if (!startsAtZero(act)) return `'${actor}' drives from the run's start and ${fromItsStart}: ${unknown}`;
+      return profiledStart(
+        profile,
+        timeAt(profile, distance) + delay,
+        `its TraveledDistanceCondition ${distance} m${delay > 0 ? ` and ${delay} s delay` : ''}`,
+      );
+    }
     if (speed === undefined)
       return walker
         ? `the speed of '${actor}' until the action starts is not certain (neither kept from the Init nor set once by a step SpeedAction of the same Act with the actor standing until then), so where it is then is not known; ${WALKER_LATER}`
-        : `the speed of '${actor}' is not certain from the action's start (neither kept from the Init nor set once by a step SpeedAction of the same Act with the actor standing until then), and ScenarioRunner would drive to the vertices by times computed at one speed`;
+        : `the speed of '${actor}' is not certain from the action's start (neither kept from the Init nor set once by a step SpeedAction of the same Act with the actor standing until then, nor changed only at known times: ${profile ?? 'no speed'}), and ScenarioRunner would drive to the vertices by times computed at one speed`;
     if (kept !== undefined && !startsAtZero(act)) return `'${actor}' drives from the run's start and ${fromItsStart}: ${unknown}`;
     const along = distance + speed * delay;
     return {
@@ -610,9 +643,12 @@ function storyRouteStartAt(tree: Node, action: Node, actor: string, except: Read
     const seconds = numberAttr(time, 'value', NaN);
     if (!FROM_TIME_ON.has(attr(time, 'rule') ?? '') || !(seconds >= 0))
       return `its SimulationTimeCondition does not name a time from which on it holds: ${unknown}`;
-    if (kept === undefined)
-      return `the speed of '${actor}' is not certain from the run's start to the action's (none set at once in the Init, a controller of its own, or an action of its story changes it): ${unknown}${walker ? `; ${WALKER_LATER}` : ''}`;
+    const profile = kept === undefined && !walker ? routeSpeedProfile(tree, actor, action) : undefined;
+    if (kept === undefined && typeof profile !== 'object')
+      return `the speed of '${actor}' is not certain from the run's start to the action's (none set at once in the Init, a controller of its own, or an action of its story changes it${profile ? `, not only at known times: ${profile}` : ''}): ${unknown}${walker ? `; ${WALKER_LATER}` : ''}`;
     if (!startsAtZero(act)) return `${fromItsStart}: ${unknown}`;
+    if (typeof profile === 'object') return profiledStart(profile, seconds + delay, `its SimulationTimeCondition ${seconds + delay} s`);
+    if (kept === undefined) return `the speed of '${actor}' is not certain: ${unknown}`;
     const along = kept * (seconds + delay);
     return {
       speed: kept,
