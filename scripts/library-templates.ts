@@ -47,14 +47,14 @@ const TEMPLATES: Template[] = [
     name: 'composition-bench',
     title: 'Composition bench',
     summary:
-      'An ego driving at 20 m/s in the leftmost lane of this direction, with a car in the lane to its right, a slower lead car (12 m/s) ahead in its lane and a pedestrian on the right sidewalk, none of them doing anything yet: Insert into Main gives them library behaviours (adversary, lead, pedestrian).',
-    parameters: [{ name: 'EgoSpeed', type: 'double', value: '20', about: 'the ego speed [m/s]' }],
+      'An ego driving at 18 m/s in the leftmost lane of this direction, with a car 25.5 m ahead in the lane to its right (17 m/s), a slower lead car (12 m/s) ahead in its lane and a pedestrian on the right sidewalk 180 m ahead, none of them doing anything yet: Insert into Main gives them library behaviours (adversary, lead, pedestrian), and with a cut-in, a lead brake and a pedestrian crossing at their defaults no two of them touch.',
+    parameters: [{ name: 'EgoSpeed', type: 'double', value: '18', about: 'the ego speed [m/s]' }],
+    // Placed so that a cut-in, a lead brake and a pedestrian crossing at their defaults have no scripted actors touch (docs/library.md).
     entities: [
       { entity: 'ego', from: ['cut-in', 'ego'], lane: -1, s: 50, speed: '$EgoSpeed' },
-      { entity: 'adversary', from: ['cut-in', 'adversary'], lane: -2, s: 85, speed: '17' },
-      // Slower than the ego, so that the lead-brake module's default headway (1.5 s) comes within the bench's 12 s: at about 8 s.
-      { entity: 'lead', from: ['lead-brake', 'lead'], lane: -1, s: 150, speed: '12' },
-      { entity: 'pedestrian', from: ['pedestrian-crossing', 'pedestrian'], lane: -4, s: 220, offset: 0.75, heading: 1.5708, speed: '0' },
+      { entity: 'adversary', from: ['cut-in', 'adversary'], lane: -2, s: 80, speed: '17' },
+      { entity: 'lead', from: ['lead-brake', 'lead'], lane: -1, s: 100, speed: '12' },
+      { entity: 'pedestrian', from: ['pedestrian-crossing', 'pedestrian'], lane: -4, s: 230, offset: 0.75, heading: 1.5708, speed: '0' },
     ],
     uses: [],
     stopTime: '12',

@@ -1,10 +1,16 @@
 import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
-import { LibraryInsertRequest, LibraryModulesRequest, NewFromTemplateRequest, TemplatesRequest } from '../../common/src/libraryProtocol';
+import {
+  LibraryCollisionsRequest,
+  LibraryInsertRequest,
+  LibraryModulesRequest,
+  NewFromTemplateRequest,
+  TemplatesRequest,
+} from '../../common/src/libraryProtocol';
 import { main } from '../../server/src/cli';
 import { builtInLibraryFolder } from '../../server/src/libraries';
-import { requireEsmini, runEsmini } from '../support/esmini';
+import { esminiBinary, requireEsmini, runEsmini } from '../support/esmini';
 import { checkCleanAndFlatten } from '../support/cliChecks';
 import { applyEdits } from '../support/textEdits';
 import { temporaryWorkspace } from '../support/workspace';
@@ -153,6 +159,11 @@ describe('language server: the Scenario Library view and Insert into main (JSON-
     assert.ok(Math.abs(egoY - cutterY) < 0.1, `the cutter ends in the ego's lane (y ${cutterY} against ${egoY})`);
     const walker = steps.map((step) => step.positions.Walker[1]);
     assert.ok(Math.abs(walker[walker.length - 1] - walker[0]) > 1, 'the pedestrian walked');
+    // The notice after the insert: none, as the bench places its entities so that no scripted actors touch (before 30
+    // November 2026 it named Cutter and Walker at 7.75 s, Cutter and Lead at 10.05 s).
+    const collisions = await client.send(LibraryCollisionsRequest, { uri, esminiPath: esminiBinary });
+    assert.deepEqual([collisions.ran, collisions.collisions], [true, []], collisions.message);
+    await client.close(uri);
   });
 
   it('Insert into main of traffic-jam-end asks who plays each of its three actors, writes them all, and the whole queue brakes in esmini', async function () {
