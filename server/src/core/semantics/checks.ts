@@ -120,15 +120,39 @@ export const dollarDeclarations: SemanticCheck = ({ model }) =>
       };
     });
 
-/** A declared parameter that nothing uses (a hint, shown faded). */
-export const unusedParameters: SemanticCheck = ({ model }) =>
-  model.declarations
+/** The declarations of a file that its referenced catalog entries use without declaring them (esmini takes them from the reference's scope). */
+function usedByCatalogEntries({ model, catalogs }: SemanticContext): Set<Declaration> {
+  const used = new Set<Declaration>();
+  const freeByEntry = new Map<XmlElement, Set<string>>();
+  for (const resolution of catalogs.references) {
+    if (!resolution.entry) continue;
+    let free = freeByEntry.get(resolution.entry.element);
+    if (!free) freeByEntry.set(resolution.entry.element, (free = entryFreeParameters(resolution)));
+    if (free.size === 0) continue;
+    const scope = model.scopeOf(resolution.reference.element);
+    for (const name of free) {
+      const declaration = resolveName(scope, name, undefined);
+      if (declaration) used.add(declaration);
+    }
+  }
+  return used;
+}
+
+/** A declared parameter that nothing uses (a hint, shown faded): neither the file nor a catalog entry it references that takes it undeclared. */
+export const unusedParameters: SemanticCheck = (context) => {
+  const { model } = context;
+  const unused = model.declarations
     .filter((declaration) => declaration.kind === 'parameter' && declaration.name && (model.usesOf.get(declaration)?.length ?? 0) === 0)
-    .filter((declaration) => declaration.scope.byName.get(declaration.name) === declaration)
+    .filter((declaration) => declaration.scope.byName.get(declaration.name) === declaration);
+  if (unused.length === 0) return [];
+  const usedByEntries = usedByCatalogEntries(context);
+  return unused
+    .filter((declaration) => !usedByEntries.has(declaration))
     .map((declaration) => ({
       ...at(declaration.element, declaration.nameAttribute),
       ...unusedParameterWording(declaration.name),
     }));
+};
 
 /** Two declarations of one name in one scope. */
 export const duplicateDeclarations: SemanticCheck = (context) => {
