@@ -313,7 +313,11 @@ describe('semantics: catalogs inside packages, through SCENARIO_PATH, and from u
     const semantics = await analyzeDocument(diskRef(path.join(root, 'scenario.xosc')), parseXml(SCENARIO), new CatalogLoader(store), false);
     const codes = semanticProblems(semantics).map((problem) => `${problem.code}:${problem.message}`);
     assert.ok(
-      codes.some((code) => code.startsWith("unknown-catalog-entry:catalog 'VehicleCatalog' has no entry named 'car'")),
+      codes.some((code) =>
+        code.startsWith(
+          `unknown-catalog-entry:catalog 'VehicleCatalog' (${path.join(root, 'catalogs', 'VehicleCatalog.xosc')}) has no entry named 'car'`,
+        ),
+      ),
       codes.join('\n'),
     );
     assert.ok(

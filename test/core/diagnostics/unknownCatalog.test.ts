@@ -125,7 +125,11 @@ describe('diagnostics: unknown-catalog', () => {
         (await problemsOf(root, 'esmini')).map((problem) => [problem.code, problem.severity, problem.message]),
         [
           ['unknown-catalog', 'warning', problems[0].message],
-          ['unknown-catalog-entry', 'error', `catalog 'VehicleCatalog' has no entry named 'car_green'; it has: car_blue, car_red`],
+          [
+            'unknown-catalog-entry',
+            'error',
+            `catalog 'VehicleCatalog' (${read}) has no entry named 'car_green'; it has: car_blue, car_red`,
+          ],
         ],
       );
       const failed = await esminiRun(root);

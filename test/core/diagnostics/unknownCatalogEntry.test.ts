@@ -31,6 +31,21 @@ describe('diagnostics: unknown-catalog-entry', () => {
     assert.equal(UNKNOWN_CATALOG_ENTRY.isData!({ suggestion: null }), false);
   });
 
+  it('names the catalog file it looked in, and with no close entry says what to do (a catalog found through the road path may not be the one meant)', async () => {
+    const { root, semantics } = await analyzed(twoCatalogs('vehicle.tesla.model3'));
+    try {
+      const first = path.join(root, 'first', 'VehicleCatalog.xosc');
+      const [problem] = semanticProblems(semantics).filter((each) => each.code === 'unknown-catalog-entry');
+      assert.equal(problem.message.startsWith(`catalog 'VehicleCatalog' (${first}`), true, problem.message);
+      assert.equal(
+        problem.hint,
+        `name one of its entries, add an entry 'vehicle.tesla.model3' to ${first}, or point the CatalogLocations at the catalog that has it`,
+      );
+    } finally {
+      fs.rmSync(root, { recursive: true, force: true });
+    }
+  });
+
   it('two catalog files of one name: the entry is looked up in the first esmini finds, the only one it reads', async () => {
     const { root, semantics } = await analyzed(twoCatalogs('car_red'));
     try {

@@ -5,30 +5,34 @@ import { defineDiagnostic, didYouMean, isSuggestion, ProblemWording } from './de
 const ENTRIES_NAMED = 30;
 
 /**
- * The catalog `catalog` (`entries`: the entries of the file that is that catalog) has no entry `entry`. `shadowed`: another
- * file holding a catalog of that name has it (`holder`), but the catalog is `loaded`, the first `catalog`.xosc esmini finds
- * (core/semantics/catalogs.ts `loadedFirst`), and esmini looks entries up in that file alone.
+ * The catalog `catalog`, the file `loaded` (`entries`: its entries), has no entry `entry`. `shadowed`: another file holding a
+ * catalog of that name has it (`holder`), but `loaded` is the first `catalog`.xosc esmini finds (core/semantics/catalogs.ts
+ * `loadedFirst`), and esmini looks entries up in that file alone.
  */
 export function unknownCatalogEntryWording(
   catalog: string,
+  loaded: string,
   entry: string,
   entries: readonly string[],
   suggestion: string | undefined,
-  shadowed?: { loaded: string; holder: string },
+  shadowed?: { holder: string },
 ): ProblemWording<'unknown-catalog-entry'> {
   const listed = `${entries.slice(0, ENTRIES_NAMED).join(', ')}${entries.length > ENTRIES_NAMED ? ', ...' : ''}`;
   if (shadowed)
     return {
       severity: 'error',
       code: 'unknown-catalog-entry',
-      message: `catalog '${catalog}' (${shadowed.loaded}, the first file of that catalog esmini finds, the only one it reads) has no entry named '${entry}'; ${shadowed.holder} has one, which esmini never reads; ${shadowed.loaded} has: ${listed}`,
-      hint: suggestion ? didYouMean(suggestion) : `move the entry into ${shadowed.loaded}, or give the other catalog another name`,
+      message: `catalog '${catalog}' (${loaded}, the first file of that catalog esmini finds, the only one it reads) has no entry named '${entry}'; ${shadowed.holder} has one, which esmini never reads; ${loaded} has: ${listed}`,
+      hint: suggestion ? didYouMean(suggestion) : `move the entry into ${loaded}, or give the other catalog another name`,
     };
+  // The file is named: a catalog found through SCENARIO_PATH or the road path may not be the one the author meant.
   return {
     severity: 'error',
     code: 'unknown-catalog-entry',
-    message: `catalog '${catalog}' has no entry named '${entry}'; it has: ${listed}`,
-    hint: didYouMean(suggestion),
+    message: `catalog '${catalog}' (${loaded}) has no entry named '${entry}'; it has: ${listed}`,
+    hint: suggestion
+      ? didYouMean(suggestion)
+      : `name one of its entries, add an entry '${entry}' to ${loaded}, or point the CatalogLocations at the catalog that has it`,
   };
 }
 

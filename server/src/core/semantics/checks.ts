@@ -386,10 +386,11 @@ export const catalogReferences: SemanticCheck = (context) => {
         ...at(reference.element, reference.entryNameAttribute),
         ...unknownCatalogEntryWording(
           resolution.catalogName,
+          displayRef(loaded.ref, undefined),
           checked.entryName ?? '',
           names,
           suggestion,
-          shadowed && { loaded: displayRef(loaded.ref, undefined), holder: displayRef(shadowed.file.ref, undefined) },
+          shadowed && { holder: displayRef(shadowed.file.ref, undefined) },
         ),
         data: suggestion ? { suggestion } : undefined,
         ...(shadowed
