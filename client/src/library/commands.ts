@@ -4,7 +4,7 @@ import type { CommandReporter } from '../commands';
 import type { ServerCommandClient } from '../languageClient';
 import { LibraryDetail } from './detail';
 import { LibraryDragController, LibraryDropProvider } from './dragAndDrop';
-import { insertIntoMain, isInsertOptions, MainTracker } from './insert';
+import { type AfterInsertRun, insertIntoMain, isInsertOptions, MainTracker } from './insert';
 import { LANGUAGE_ID } from '../languageClient';
 import { newFromTemplateCommand } from './templates';
 import { LIBRARY_VIEW_ID, LibraryNode, LibraryTree } from './view';
@@ -18,6 +18,8 @@ export interface LibraryApi {
   /** Dragging a module from the view, and dropping it onto a main. */
   readonly dragController: LibraryDragController;
   readonly dropProvider: LibraryDropProvider;
+  /** Insert into Main's runs of the main in esmini, the latest last: whether each ran, and the notice it gave. */
+  readonly afterInsertRuns: readonly AfterInsertRun[];
 }
 
 /** A module named by a tree node, a module summary or its name (`cut-in`, `library:cut-in`). */
@@ -44,8 +46,9 @@ export function registerLibrary(context: vscode.ExtensionContext, server: Server
     showCollapseAll: true,
     dragAndDropController: dragController,
   });
+  const afterInsertRuns: AfterInsertRun[] = [];
   const insert = (module: LibraryModuleSummary, ...rest: unknown[]) =>
-    insertIntoMain(server, reporter, tracker, module, rest.find(isInsertOptions) ?? {});
+    insertIntoMain(server, reporter, tracker, module, rest.find(isInsertOptions) ?? {}, afterInsertRuns);
   const detail = new LibraryDetail((module) => insert(module));
   context.subscriptions.push(tree, tracker, view, detail);
 
@@ -157,5 +160,5 @@ export function registerLibrary(context: vscode.ExtensionContext, server: Server
   register('modular2simple.newFromTemplate', (clicked?: unknown, ...rest: unknown[]) =>
     newFromTemplateCommand(server, reporter, clicked, ...rest),
   );
-  return { tree, detail, refresh, dragController, dropProvider };
+  return { tree, detail, refresh, dragController, dropProvider, afterInsertRuns };
 }

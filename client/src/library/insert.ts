@@ -238,12 +238,24 @@ export function reportInserted(reporter: CommandReporter, title: string, module:
   void vscode.window.setStatusBarMessage(`Inserted library:${module.name} as ${inserted.groupName} (${inserted.cast})${added}`, 8000);
 }
 
+/** A run of the main after an insert: the module inserted, the main, whether esmini ran, and the notice shown (none where nothing touches). */
+export interface AfterInsertRun {
+  module: string;
+  main: string;
+  ran: boolean;
+  notice?: string;
+}
+
+/** The after-insert runs kept for the view's API (the tests read them): the latest this many. */
+const KEPT_RUNS = 20;
+
 /** Runs the main as the editor has it in esmini and shows a notice where scripted actors touch; a run that cannot happen is logged. */
 async function noticeCollisions(
   server: ServerCommandClient,
   reporter: CommandReporter,
   module: LibraryModuleSummary,
   main: vscode.Uri,
+  runs: AfterInsertRun[],
 ): Promise<void> {
   try {
     const settings = vscode.workspace.getConfiguration('modular2simple.esmini', main);
@@ -253,6 +265,8 @@ async function noticeCollisions(
       roadPath: settings.get<string[]>('roadPath') ?? [],
     });
     const notice = collisionNotice(module.name, result);
+    runs.push({ module: module.name, main: main.toString(), ran: result.ran, ...(notice ? { notice } : {}) });
+    runs.splice(0, Math.max(0, runs.length - KEPT_RUNS));
     reporter.log(`${TITLE}: esmini's run after the insert: ${notice ?? (result.ran ? 'no scripted actors touch' : result.message)}`);
     if (notice) void vscode.window.showWarningMessage(notice);
   } catch (error) {
@@ -267,6 +281,7 @@ export async function insertIntoMain(
   tracker: MainTracker,
   module: LibraryModuleSummary,
   options: InsertOptions = {},
+  runs: AfterInsertRun[] = [],
 ): Promise<string | undefined> {
   try {
     if (options.main === undefined && !tracker.main) {
@@ -284,7 +299,7 @@ export async function insertIntoMain(
     editor.selection = new vscode.Selection(inserted.line, 0, inserted.line, 0);
     reportInserted(reporter, TITLE, module, inserted);
     // Not awaited: the notice comes when the run has, and never holds the edit back.
-    void noticeCollisions(server, reporter, module, inserted.main);
+    void noticeCollisions(server, reporter, module, inserted.main, runs);
     return inserted.groupName;
   } catch (error) {
     // Not awaited: the message waits for the user, the command's caller should not.

@@ -20,10 +20,15 @@ import {
 } from './helpers';
 import { pageBoxes, pageShows, screenshot } from './harnessClient';
 
+/** esmini as the test setup builds it beside the CLI under test (it may be absent). */
+export function projectEsmini(): { repository: string; esmini: string } {
+  const repository = path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
+  return { repository, esmini: path.join(repository, '.cache', 'esmini', 'bin', 'esmini') };
+}
+
 /** esmini as the test setup builds it beside the CLI under test, and the shared road files; skips the test without them. */
 export function esminiOrSkip(context: Mocha.Context): { repository: string; esmini: string; roads: string } {
-  const repository = path.resolve(path.dirname(process.env[HARNESS_ENV.cli] ?? '.'), '..');
-  const esmini = path.join(repository, '.cache', 'esmini', 'bin', 'esmini');
+  const { repository, esmini } = projectEsmini();
   const roads = path.resolve(repository, '..', 'shared', 'esmini', 'xodr');
   if (!fs.existsSync(esmini) || !fs.existsSync(roads)) {
     assert.ok(!process.env.M2S_REQUIRE_ESMINI, `M2S_REQUIRE_ESMINI is set, but ${esmini} or ${roads} is absent`);

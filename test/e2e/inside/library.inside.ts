@@ -4,6 +4,7 @@ import * as path from 'node:path';
 import * as vscode from 'vscode';
 import type { LibraryNode } from '../../../client/src/library/view';
 import { dragOnto, pageShows, post, pressKeys, quickInput, screenshot, typeText } from './harnessClient';
+import { projectEsmini } from './esmini.inside';
 import { api, cli, type InsideTests, positionOf, revertAndClose, TEST_MS, waitFor, workspaceRoot } from './helpers';
 
 /** The module node the Scenario Library view shows for `name`, as its inline Insert button passes it. */
@@ -66,6 +67,13 @@ export const libraryTests: InsideTests = {
     const main = path.join(workspaceRoot(), 'composition-bench.xosc');
     const road = path.join(workspaceRoot(), 'straight_1000m.xodr');
     assert.ok(!fs.existsSync(main) && !fs.existsSync(road), 'the workspace holds a composition bench already');
+    // After each insert the main runs in esmini (for the notice of scripted actors that touch): this project's esmini.
+    const esmini = vscode.workspace.getConfiguration('modular2simple.esmini');
+    const program = projectEsmini().esmini;
+    const esminiBuilt = fs.existsSync(program);
+    assert.ok(esminiBuilt || !process.env.M2S_REQUIRE_ESMINI, `M2S_REQUIRE_ESMINI is set, but ${program} is absent`);
+    await esmini.update('path', program, vscode.ConfigurationTarget.Workspace);
+    const runsBefore = api().library.afterInsertRuns.length;
     try {
       steps.push('Insert into Main: cut-in');
       const first = vscode.commands.executeCommand<string | undefined>('modular2simple.library.insert', moduleNode('cut-in'));
@@ -88,6 +96,16 @@ export const libraryTests: InsideTests = {
       );
       for (const name of ['cut-in', 'lead-brake', 'pedestrian-crossing'])
         assert.ok(document.getText().includes(`scenarioFileName="library:${name}"`), `no reference to library:${name}`);
+      // Each insert's run of the main in esmini: it ran, and no scripted actors touch, so no notice (before 30 November
+      // 2026 the last named the cut-in's car touching the pedestrian at 7.75 s and the lead at 10.05 s).
+      const runs = await waitFor('the run after each insert', () => {
+        const done = api().library.afterInsertRuns.slice(runsBefore);
+        return done.length >= 3 ? done : undefined;
+      });
+      assert.deepEqual(
+        runs.map((run) => [run.module, path.basename(vscode.Uri.parse(run.main).fsPath), run.ran, run.notice]).sort(),
+        ['cut-in', 'lead-brake', 'pedestrian-crossing'].map((name) => [name, 'composition-bench.xosc', esminiBuilt, undefined]),
+      );
       // Each insert is an edit, as VS Code's own are: the main is left modified, the file on disk as the bench wrote it.
       assert.equal(document.isDirty, true, 'an insert saved the main');
       assert.ok(!fs.readFileSync(main, 'utf8').includes('library:'), 'an insert wrote the main on disk');
@@ -114,6 +132,7 @@ export const libraryTests: InsideTests = {
       assert.ok(steps.length <= 5, `composing took ${steps.length} steps: ${steps.join('; ')}`);
       console.log(`composed in ${steps.length} steps: ${steps.join('; ')}`);
     } finally {
+      await esmini.update('path', undefined, vscode.ConfigurationTarget.Workspace);
       await revertAndClose();
       fs.rmSync(main, { force: true });
       fs.rmSync(road, { force: true });
