@@ -978,6 +978,14 @@ function slowerStory(actor: string, change: string, at: number, other?: string, 
     </Story>`;
 }
 
+/** `text` written at `original` and exported (exit 0): what the report says of its AssignRouteAction, and the written file. */
+async function exportedAssignRoute(original: string, text: string): Promise<{ what: string; output: string }> {
+  fs.writeFileSync(original, text);
+  const result = await exportFile(original, path.join(path.dirname(original), 'exported.xosc'));
+  assert.equal(result.code, 0, result.stderr);
+  return { what: result.report.losses.find((loss) => loss.element === 'AssignRouteAction')?.what ?? '', output: result.output };
+}
+
 describe('export --target carla, Init routes under 0.9.16 written as trajectories along their lanes', function () {
   this.timeout(300_000);
   let out: string;
@@ -1033,12 +1041,35 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       Math.round(last ?? 0),
     ]);
     assert.deepEqual(built.sort(), [
-      ['InitActorEgo', 'FollowTrajectoryAction', vertices('Ego'), vertices('Ego'), 17],
+      ['InitActorEgo', 'FollowTrajectoryAction', vertices('Ego'), vertices('Ego'), 19],
       ['InitActorFollower', 'FollowTrajectoryAction', vertices('Follower'), vertices('Follower'), 20],
     ]);
+    // Ego's route ends at 17.4 s, before the run stops at 18.5 s: its trajectory goes on along road 1 to that road's end, 18.6 s,
+    // since ScenarioRunner's vehicle controller raises past the last vertex; the Follower's route ends after the run stops.
+    assert.match(
+      mapped[0].what,
+      /176 LanePositions at most 1 m apart, timed at its speed 10 m\/s; then 12 more along its lane past the route's end \(11\.91 m, roads 1\), as esmini drives on past a route's end, to its last vertex at 18\.594\d s from the action's start, after the run stops at 18\.5 s: past the last vertex ScenarioRunner raises IndexError \(list index out of range\) .*npc_vehicle_control\.py:103-111, 125-127.*local_planner\.py/,
+    );
+    assert.match(
+      mapped[1].what,
+      /the run stops at 18\.5 s, before it reaches the last vertex, past which ScenarioRunner raises IndexError/,
+    );
     // Spawned where the Init places them, not at their trajectories' ends.
     assert.ok(verdict?.spawns?.Ego && verdict.spawns.Follower, JSON.stringify(verdict?.spawns));
     await assertMovesAlike(original, result.output, 18.5, 0.05);
+  });
+
+  it("a run whose stop time the export does not know: the trajectory ends at the route's end, and the report names that ScenarioRunner raises past its last vertex, and when (issue 26)", async () => {
+    const original = path.join(out, 'routes.xosc');
+    const text = initRoutesScenario().replace(
+      '<SimulationTimeCondition value="18.5" rule="greaterThan"/>',
+      '<StoryboardElementStateCondition storyboardElementType="act" storyboardElementRef="Nothing" state="completeState"/>',
+    );
+    assert.match(text, /storyboardElementRef="Nothing" state="completeState"/);
+    assert.match(
+      (await exportedAssignRoute(original, text)).what,
+      /176 LanePositions at most 1 m apart, timed at its speed 10 m\/s; past the last one esmini drives it on in its lane, as past a route's end, but ScenarioRunner raises IndexError \(list index out of range\) in a vehicle's controller at the tick after the vehicle reaches its trajectory's last vertex.*: the run has no stop time the export knows .*, so ScenarioRunner ends it with that error if it lasts past 17\.40\d* s from the action's start/,
+    );
   });
 
   it("an actor off its lane's centre: each vertex at its offset, as esmini keeps it (within 0.05 m); named, as ScenarioRunner drives lane centres", async function () {
@@ -1049,15 +1080,12 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       '<LanePosition roadId="2" laneId="-1" offset="0.3" s="150"/>',
     );
     assert.match(text, /offset="0\.3"/);
-    fs.writeFileSync(original, text);
-    const result = await exportFile(original, path.join(out, 'exported.xosc'));
-    assert.equal(result.code, 0, result.stderr);
-    const mapped = result.report.losses.find((loss) => loss.element === 'AssignRouteAction');
+    const mapped = await exportedAssignRoute(original, text);
     assert.match(
-      mapped?.what ?? '',
+      mapped.what,
       /its offset 0\.3 m from the lane centre is written on each vertex, but ScenarioRunner's vehicle controller drives to each vertex's lane centre/,
     );
-    await assertMovesAlike(original, result.output, 18.5, 0.05);
+    await assertMovesAlike(original, mapped.output, 18.5, 0.05);
   });
 
   it('a vehicle whose story changes its speed at known times during its Init route: its vertices timed by that speed, as esmini drives the original (within one step); ScenarioRunner builds it, esmini runs it alike (issue 26)', async function () {
@@ -1123,7 +1151,10 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
         return track[index - 1].time + fraction * (track[index].time - track[index - 1].time);
       };
       const written = times(result.output, entity);
-      const distances = times(reference.output, entity).map((time) => time * speed);
+      // The same vertices, but the reference's trajectory goes on past the route's end until its run stops (at one speed, sooner).
+      const distances = times(reference.output, entity)
+        .slice(0, written.length)
+        .map((time) => time * speed);
       assert.equal(written.length, distances.length, entity);
       let compared = 0;
       let worst = 0;
@@ -1156,12 +1187,12 @@ describe('export --target carla, Init routes under 0.9.16 written as trajectorie
       result.report.losses.find((loss) => loss.kind === 'refused')?.carla ?? '',
       /the speed of 'Ego' is not certain over the route .*: the SpeedAction at routes\.xosc:\d+ starts on TraveledDistanceCondition, not one SimulationTimeCondition, so when it starts is known only as the run goes; ScenarioRunner would drive to the vertices by times computed beforehand \(.*npc_vehicle_control\.py:103-113.*\); export with --carla 0\.9\.15/,
     );
-    // The run lasting past the route's end, at 29.8 s: ScenarioRunner would then set Ego back to its Init speed.
+    // The run lasting past the route's end, at 29.8 s, and road 1's end 11.9 m on, at 32.2 s: ScenarioRunner would then set Ego back to its Init speed.
     const longer = initRoutesScenario(slowerStory('Ego', speedChange('step', 0, 'time', 5), 5), 40);
     const reset = await refusedExport(original, longer);
     assert.match(
       reset.report.losses.find((loss) => loss.kind === 'refused')?.carla ?? '',
-      /'Ego' ends its route at 29\.8\d* s at 5 m\/s \(its speed 10 m\/s, then 5 m\/s from 5 s by the SpeedAction at routes\.xosc:\d+\), and ScenarioRunner .*once an Init trajectory ends, the actor's Init sequence sets its Init speed again \(.*open_scenario\.py:356-357\), 10 m\/s, where esmini keeps 5 m\/s/,
+      /'Ego' ends its trajectory \(its route, then its lane on past it\) at 32\.188\d* s at 5 m\/s \(its speed 10 m\/s, then 5 m\/s from 5 s by the SpeedAction at routes\.xosc:\d+\), and ScenarioRunner .*once an Init trajectory ends, the actor's Init sequence sets its Init speed again \(.*open_scenario\.py:356-357\), 10 m\/s, where esmini keeps 5 m\/s/,
     );
     // A pedestrian: its walker controller walks at the speed set, which the Init sets only after the trajectory ends.
     const walking = initRoutesScenario().replace(

@@ -12,7 +12,7 @@
  */
 import { isDrivingLane, type RoadNetwork } from '../opendrive/road';
 import { laneAtPoint, snappedLaneAtPoint } from '../opendrive/lanePosition';
-import { LaneStretch, routeLanes, RouteWaypoint } from '../opendrive/route';
+import { LaneOnwards, laneOnwards, LaneStretch, routeLanes, RouteWaypoint } from '../opendrive/route';
 import { CARLA_FACTS } from '../profiles/carla';
 import { SR_ATOMICS, SR_PARSER } from '../profiles/scenarioRunner';
 import { roadPositionPose } from './trajectoryPoint';
@@ -210,7 +210,8 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
       }`;
     }
   if (typeof starts === 'string') return starts;
-  const { speed, along, profile, startTime = 0 } = starts;
+  const { speed, along, profile } = starts;
+  const startTime = starts.startTime ?? 0;
   if (!(speed > 0)) return `'${actor}' keeps the speed ${speed}, and a trajectory at that speed has no times`;
   const start = startOf(tree, actor, road, walker);
   if (typeof start === 'string') return start;
@@ -218,32 +219,35 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   if (typeof waypoints === 'string') return waypoints;
   const stretches = routeLanes(roads, waypoints, start);
   if (typeof stretches === 'string') return stretches;
-  // Each stretch sampled at most ROUTE_STEP apart, 1 mm inside its lane section so that its lane id is the one there.
+  const sampling: Sampling = {
+    alongS: stretchAlongS(stretches[0], start),
+    startAlongS: stretchAlongS(stretches[0], start),
+    offset: start.offset,
+  };
   const vertices: Vertex[] = [];
-  // esmini keeps the offset to the same side of the way the entity moves: its sign turns where it moves against s and did not at its start.
-  let alongS = stretchAlongS(stretches[0], start);
-  const startAlongS = alongS;
-  for (const stretch of stretches) {
-    if (stretch.to !== stretch.from) alongS = stretch.to > stretch.from;
-    const length = Math.abs(stretch.to - stretch.from);
-    const count = Math.max(1, Math.ceil(length / ROUTE_STEP - 1e-9));
-    const inward = Math.min(0.001, length / 2) * Math.sign(stretch.to - stretch.from);
-    for (let index = 0; index <= count; index++) {
-      const s = stretch.from + ((stretch.to - stretch.from) * index) / count + (index === 0 ? inward : index === count ? -inward : 0);
-      const offset = alongS === startAlongS ? start.offset : -start.offset;
-      const vertex = vertexAt(stretch.roadId, stretch.laneId, s, offset, roads);
-      if (typeof vertex === 'string') return vertex;
-      const previous = vertices.at(-1);
-      // Where a stretch ends, the next begins: one vertex there.
-      if (previous && Math.hypot(vertex.x - previous.x, vertex.y - previous.y) < 0.01) continue;
-      vertices.push(vertex);
-    }
-  }
+  const sampled = sampleStretches(stretches, sampling, roads, vertices);
+  if (sampled) return sampled;
   const line = walker && vertices.length > 0 ? walkerLine(tree, actor, road, vertices) : undefined;
   const expected = along > 0 ? fromWhereExpected(vertices, along, start, actor, roads, line) : { rest: vertices, strayed: 0 };
   if (typeof expected === 'string') return expected;
-  const driven = expected.rest;
+  const driven = [...expected.rest];
   if (driven.length < 2) return `'${actor}' ${along > 0 ? 'is expected where' : 'starts where'} its route ends`;
+  let routeLength = 0;
+  for (let index = 1; index < driven.length; index++)
+    routeLength += Math.hypot(driven[index].x - driven[index - 1].x, driven[index].y - driven[index - 1].y);
+  // A vehicle's trajectory goes on along its lane past the route's end until the run stops: ScenarioRunner raises past its last vertex.
+  const routeVertices = driven.length;
+  const past = walker
+    ? undefined
+    : pastRouteEnd(tree, { speed, along, profile, startTime, known: starts.startTime !== undefined }, routeLength);
+  if (past?.length) {
+    const last = stretches[stretches.length - 1];
+    const direction = last.to !== last.from ? (last.to > last.from ? 1 : -1) : sampling.alongS ? 1 : -1;
+    const onwards = laneOnwards(roads, last.roadId, last.laneId, last.to, direction, past.length);
+    past.onwards = onwards;
+    const extended = sampleStretches(onwards.stretches, sampling, roads, driven);
+    if (extended) return extended;
+  }
   let length = 0;
   const polyline = makeNode(
     'Polyline',
@@ -271,6 +275,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
     const endSpeed = speedAt(profile, ends);
     const stop = runStopTime(tree);
     const stopsBefore = stop !== undefined && stop <= ends;
+    const routeEnds = timeAt(profile, along + routeLength);
     const fact = CARLA_FACTS.vehicleSpeedChangeOnTrajectory;
     // esmini's FollowTrajectoryAction takes the longitudinal domain too (OSCPrivateAction.hpp FollowTrajectory), ending a speed change still running.
     const cut = profile.changes.find(({ at, takes }) => at < startTime - 1e-9 && startTime < at + takes - 1e-9);
@@ -278,12 +283,12 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
       ? `; the SpeedAction at ${lineOf(cut.action) || 'a story line'} is still changing the speed when the action starts, and esmini ends it there when it runs the export (its FollowTrajectoryAction takes the longitudinal domain too: OSCPrivateAction.hpp FollowTrajectory), keeping ${fourDecimals(speed)} m/s, where ScenarioRunner drives by the times`
       : '';
     timing = `timed by its speed as esmini drives it, ${describeProfile(profile)}: ScenarioRunner ${fact.does} (${fact.source})${esminiCut}${
-      stopsBefore
-        ? `; the run stops at ${fourDecimals(stop)} s, before the route ends at ${fourDecimals(ends)} s${inInit ? '' : " from the run's start, its times counted"}`
+      stop !== undefined && stop <= routeEnds
+        ? `; the run stops at ${fourDecimals(stop)} s, before the route ends at ${fourDecimals(routeEnds)} s${inInit ? '' : " from the run's start, its times counted"}`
         : ''
     }`;
     if (inInit && Math.abs(endSpeed - profile.start) > 1e-9 && !stopsBefore)
-      return `'${actor}' ends its route at ${fourDecimals(ends)} s at ${fourDecimals(endSpeed)} m/s (its speed ${describeProfile(profile)}), and ScenarioRunner ${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.does} (${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.source}), ${fourDecimals(profile.start)} m/s, where esmini keeps ${fourDecimals(endSpeed)} m/s: the run would have to stop by then (a Storyboard StopTrigger of one SimulationTimeCondition), or the story bring it back to its Init speed`;
+      return `'${actor}' ends its trajectory (its route${length > routeLength ? ', then its lane on past it' : ''}) at ${fourDecimals(ends)} s at ${fourDecimals(endSpeed)} m/s (its speed ${describeProfile(profile)}), and ScenarioRunner ${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.does} (${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.source}), ${fourDecimals(profile.start)} m/s, where esmini keeps ${fourDecimals(endSpeed)} m/s: the run would have to stop by then (a Storyboard StopTrigger of one SimulationTimeCondition), or the story bring it back to its Init speed`;
   }
   const name = attr(child(action, 'Route') ?? action, 'name') ?? action.name;
   const follow = makeNode(
@@ -304,11 +309,11 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
     action.place,
   );
   const roadIds: string[] = [];
-  for (const vertex of driven) if (roadIds.at(-1) !== vertex.roadId) roadIds.push(vertex.roadId);
+  for (const vertex of driven.slice(0, routeVertices)) if (roadIds.at(-1) !== vertex.roadId) roadIds.push(vertex.roadId);
   const first = driven[0];
   const from = inInit
-    ? `from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(start.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`
-    : `from where '${actor}' is expected when the action starts, ${starts.how} (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(first.s.toFixed(3))}, ${Number(length.toFixed(2))} m)`;
+    ? `from ${actor}'s start (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(start.s.toFixed(3))}, ${Number(routeLength.toFixed(2))} m)`
+    : `from where '${actor}' is expected when the action starts, ${starts.how} (roads ${roadIds.join(' > ')}, lane ${first.laneId} from s ${Number(first.s.toFixed(3))}, ${Number(routeLength.toFixed(2))} m)`;
   const later = starts.later ?? [];
   const changes =
     later.length > 0
@@ -327,16 +332,103 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   return {
     follow,
     walker,
-    summary: `the lanes esmini drives it in ${from}: ${driven.length} LanePositions at most ${ROUTE_STEP} m apart, ${timing}${
+    summary: `the lanes esmini drives it in ${from}: ${routeVertices} LanePositions at most ${ROUTE_STEP} m apart, ${timing}${
       inInit
         ? ''
         : " from the action's start; it reaches each vertex at its time from where it is expected when the action starts, and catches up or waits if it is elsewhere"
-    }; past the last one it drives on in its lane, as past a route's end${
+    }; ${pastEndSummary(past, driven.length - routeVertices, length - routeLength, { last: profile ? timeAt(profile, along + length) - startTime : length / speed, startTime: starts.startTime }, driven.slice(routeVertices - 1))}${
       start.offset !== 0
         ? `; its offset ${fourDecimals(start.offset)} m from the lane centre is written on each vertex, but ScenarioRunner's vehicle controller drives to each vertex's lane centre (npc_vehicle_control.py _update_plan: get_waypoint, project_to_road)`
         : ''
     }`,
   };
+}
+
+/** How sampling goes on from stretch to stretch: the way the actor moves along s, its start's, and its offset from the lane centre. */
+interface Sampling {
+  alongS: boolean;
+  startAlongS: boolean;
+  offset: number;
+}
+
+/**
+ * Each stretch sampled into `vertices` at most ROUTE_STEP apart, 1 mm inside its lane section so that its lane id is the one
+ * there, or why a point is not on the road. esmini keeps the offset to the same side of the way the entity moves: its sign
+ * turns where it moves against s and did not at its start.
+ */
+function sampleStretches(stretches: LaneStretch[], sampling: Sampling, roads: RoadNetwork, vertices: Vertex[]): string | undefined {
+  for (const stretch of stretches) {
+    if (stretch.to !== stretch.from) sampling.alongS = stretch.to > stretch.from;
+    const length = Math.abs(stretch.to - stretch.from);
+    const count = Math.max(1, Math.ceil(length / ROUTE_STEP - 1e-9));
+    const inward = Math.min(0.001, length / 2) * Math.sign(stretch.to - stretch.from);
+    for (let index = 0; index <= count; index++) {
+      const s = stretch.from + ((stretch.to - stretch.from) * index) / count + (index === 0 ? inward : index === count ? -inward : 0);
+      const offset = sampling.alongS === sampling.startAlongS ? sampling.offset : -sampling.offset;
+      const vertex = vertexAt(stretch.roadId, stretch.laneId, s, offset, roads);
+      if (typeof vertex === 'string') return vertex;
+      const previous = vertices.at(-1);
+      // Where a stretch ends, the next begins: one vertex there.
+      if (previous && Math.hypot(vertex.x - previous.x, vertex.y - previous.y) < 0.01) continue;
+      vertices.push(vertex);
+    }
+  }
+  return undefined;
+}
+
+/** How far past the route's end a vehicle's trajectory must go so that the run stops before its last vertex, and the lane found. */
+interface PastEnd {
+  /** When the run stops, from its start (a Storyboard StopTrigger of one SimulationTimeCondition); undefined when not known. */
+  stop: number | undefined;
+  /** Metres past the route's end to the point the vehicle reaches a second after the run stops (0: the run stops first). */
+  length: number;
+  onwards?: LaneOnwards;
+}
+
+/** ScenarioRunner's run goes on this long past the stop condition's time at most: its Storyboard StopTrigger is ticked once a frame. */
+const PAST_STOP_SECONDS = 1;
+
+/**
+ * How far past its route's end a vehicle drives until the run stops: at its profile's speeds, or at its one speed from when the
+ * action starts (the run's start where that is not known: a bound). None when the run's stop time is not known.
+ */
+function pastRouteEnd(
+  tree: Node,
+  drive: { speed: number; along: number; profile: SpeedProfile | undefined; startTime: number; known: boolean },
+  routeLength: number,
+): PastEnd {
+  const stop = runStopTime(tree);
+  if (stop === undefined) return { stop, length: 0 };
+  const until = stop + PAST_STOP_SECONDS;
+  const beyond = drive.profile
+    ? distanceAt(drive.profile, until) - (drive.along + routeLength)
+    : drive.speed * (until - (drive.known ? drive.startTime : 0)) - routeLength;
+  return { stop, length: Math.max(0, beyond) };
+}
+
+/** What the report says of the trajectory past the route's end: how far it goes on, and where ScenarioRunner would raise. */
+function pastEndSummary(
+  past: PastEnd | undefined,
+  vertices: number,
+  length: number,
+  times: { last: number; startTime: number | undefined },
+  onwards: Vertex[],
+): string {
+  const lastTime = times.last;
+  const fact = CARLA_FACTS.trajectoryEndRaises;
+  const raises = `ScenarioRunner ${fact.does} (${fact.source})`;
+  if (!past || past.stop === undefined)
+    return `past the last one esmini drives it on in its lane, as past a route's end, but ${raises}: the run has no stop time the export knows (a Storyboard StopTrigger of one SimulationTimeCondition), so ScenarioRunner ends it with that error if it lasts past ${fourDecimals(lastTime)} s from the action's start`;
+  if (past.length === 0 || !past.onwards)
+    return `the run stops at ${fourDecimals(past.stop)} s, before it reaches the last vertex, past which ${raises}`;
+  const roadIds: string[] = [];
+  for (const vertex of onwards) if (roadIds.at(-1) !== vertex.roadId) roadIds.push(vertex.roadId);
+  const goesOn = `then ${vertices} more along its lane past the route's end (${Number(length.toFixed(2))} m, roads ${roadIds.join(' > ')}), as esmini drives on past a route's end, to its last vertex at ${fourDecimals(lastTime)} s from the action's start`;
+  // Known from the run's start: the lane ending after the run stops does not matter.
+  const lastFromRunStart = times.startTime === undefined ? undefined : times.startTime + lastTime;
+  if (!past.onwards.endsBecause || (lastFromRunStart !== undefined && lastFromRunStart >= past.stop))
+    return `${goesOn}, after the run stops at ${fourDecimals(past.stop)} s: past the last vertex ${raises}`;
+  return `${goesOn}, where ${past.onwards.endsBecause}; past it ${raises}, so ScenarioRunner ends the run with that error there if the run, which stops at ${fourDecimals(past.stop)} s, has not stopped by then`;
 }
 
 interface Vertex {
@@ -450,7 +542,7 @@ interface RouteStart {
   speed: number;
   /** A vehicle's speed from the run's start when its story changes it at known times: the route's vertices are timed by it. */
   profile?: SpeedProfile;
-  /** With a profile: when the route action starts, in seconds from the run's start. */
+  /** When the route action starts, in seconds from the run's start, where that is known (always with a profile). */
   startTime?: number;
   along: number;
   how: string;
@@ -460,11 +552,11 @@ interface RouteStart {
 /** An Init route starts where the actor starts, at the speed it keeps over the whole run, or a vehicle's by a profile known beforehand. */
 function initRouteStart(tree: Node, actor: string, action: Node): RouteStart | string {
   const speed = constantSpeedOf(tree, actor, action);
-  if (speed !== undefined) return { speed, along: 0, how: 'its start' };
+  if (speed !== undefined) return { speed, along: 0, how: 'its start', startTime: 0 };
   const profile = routeSpeedProfile(tree, actor, action);
   if (typeof profile === 'string')
     return `the speed of '${actor}' is not certain over the route (none set at once in the Init, a controller of its own, or an action of its story changes it): ${profile}; ScenarioRunner would drive to the vertices by times computed beforehand (${CARLA_FACTS.vehicleSpeedChangeOnTrajectory.source})`;
-  return { speed: profile.start, along: 0, how: 'its start', profile };
+  return { speed: profile.start, along: 0, how: 'its start', profile, startTime: 0 };
 }
 
 /**
@@ -635,6 +727,7 @@ function storyRouteStartAt(tree: Node, action: Node, actor: string, except: Read
     return {
       speed,
       along,
+      ...(kept !== undefined ? { startTime: distance / kept + delay } : {}),
       how: `${Number(along.toFixed(3))} m along its lane from its start (its TraveledDistanceCondition ${distance} m${delay > 0 ? ` and ${delay} s delay` : ''})`,
     };
   }
@@ -653,6 +746,7 @@ function storyRouteStartAt(tree: Node, action: Node, actor: string, except: Read
     return {
       speed: kept,
       along,
+      startTime: seconds + delay,
       how: `${Number(along.toFixed(3))} m along its lane from its start (${seconds + delay} s at ${fourDecimals(kept)} m/s)`,
     };
   }

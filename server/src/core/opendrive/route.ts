@@ -440,3 +440,80 @@ export function routeLanes(network: RoadNetwork, waypoints: RouteWaypoint[], sta
   }
   return stretches;
 }
+
+/** Lane stretches onwards from a point, and why they end short of the length asked, if they do. */
+export interface LaneOnwards {
+  stretches: LaneStretch[];
+  length: number;
+  /** Why the lane cannot be followed further: its road ends, or a junction offers more than one way on. */
+  endsBecause?: string;
+}
+
+/**
+ * The lane an entity keeps past a route's last waypoint, `length` metres on from `roadId`/`laneId` at `s` the way `direction`
+ * runs (esmini's default controller drives on in its lane, Position::MoveAlongS): through lane sections and road links by
+ * lane links, through a junction only where one connection leads on from the lane (else esmini's junction selector decides).
+ */
+export function laneOnwards(
+  network: RoadNetwork,
+  roadId: string,
+  laneId: number,
+  s: number,
+  direction: 1 | -1,
+  length: number,
+): LaneOnwards {
+  const stretches: LaneStretch[] = [];
+  let covered = 0;
+  let road = network.byId.get(roadId);
+  let lane = laneId;
+  let at = s;
+  let heading = direction;
+  for (let steps = 0; road && steps < MAX_STEPS; steps++) {
+    let section = laneSectionIndexAt(road, at);
+    for (;;) {
+      const current = road.laneSections[section];
+      if (!current?.lanes.some((each) => each.id === lane))
+        return { stretches, length: covered, endsBecause: `road ${road.id} has no lane ${lane} at s ${Number(at.toFixed(3))}` };
+      const sectionEnd = heading === 1 ? current.s + current.length : current.s;
+      const left = length - covered;
+      if (Math.abs(sectionEnd - at) >= left) {
+        stretches.push({ roadId: road.id, laneId: lane, from: at, to: at + heading * left });
+        return { stretches, length };
+      }
+      if (Math.abs(sectionEnd - at) > SMALL) stretches.push({ roadId: road.id, laneId: lane, from: at, to: sectionEnd });
+      covered += Math.abs(sectionEnd - at);
+      at = sectionEnd;
+      if (section + heading < 0 || section + heading >= road.laneSections.length) break;
+      lane = nextSectionLane(road, section, lane, heading);
+      section += heading;
+    }
+    const exit: End = heading === 1 ? 'end' : 'start';
+    const link = linkAt(road, exit);
+    let next: Road | undefined;
+    let entered: End | undefined;
+    let nextLane = 0;
+    if (link?.elementType === 'road') {
+      next = network.byId.get(link.elementId);
+      entered = link.contactPoint ?? 'start';
+      nextLane = laneLinkAt(road, exit, lane);
+    } else if (link?.elementType === 'junction') {
+      const ways = connectionsFrom(network, link.elementId, road).filter((each) => each.laneLinks.some(([from]) => from === lane));
+      if (ways.length > 1)
+        return {
+          stretches,
+          length: covered,
+          endsBecause: `lane ${lane} of road ${road.id} enters junction ${link.elementId}, where ${ways.length} connections lead on and esmini's junction selector picks one`,
+        };
+      next = ways[0] ? network.byId.get(ways[0].connectingRoad) : undefined;
+      entered = ways[0]?.contactPoint;
+      nextLane = ways[0]?.laneLinks.find(([from]) => from === lane)?.[1] ?? 0;
+    }
+    if (!next || !entered || nextLane === 0)
+      return { stretches, length: covered, endsBecause: `lane ${lane} of road ${road.id} leads nowhere at its ${exit}` };
+    road = next;
+    lane = nextLane;
+    heading = entered === 'start' ? 1 : -1;
+    at = entered === 'start' ? 0 : next.length;
+  }
+  return { stretches, length: covered, endsBecause: `the lane runs over more than ${MAX_STEPS} roads` };
+}

@@ -316,6 +316,11 @@ export const CARLA_FACTS = {
     source: `srunner/scenariomanager/actorcontrols/npc_vehicle_control.py:103-113, ${PARSER}:1509-1513`,
     severity: 'warning',
   },
+  trajectoryEndRaises: {
+    does: "raises IndexError (list index out of range) in a vehicle's controller at the tick after the vehicle reaches its trajectory's last vertex, which ends the run: NpcVehicleControl keeps the vertex times once ChangeActorWaypoints has ended, and CARLA's LocalPlanner has emptied its plan by then (its done(), which ends that atomic, is an empty plan; set_global_plan stops it making more), so it reads the time at the index one past the last",
+    source: `srunner/scenariomanager/actorcontrols/npc_vehicle_control.py:103-111, 125-127, srunner/scenariomanager/actorcontrols/basic_control.py:71-82, ${ATOMICS}:882-886, scenario_runner.py:445, 458-461; CARLA PythonAPI agents/navigation/local_planner.py set_global_plan, run_step, done, get_plan`,
+    severity: 'warning',
+  },
   walkerWalksAtSetSpeed: {
     does: 'walks a pedestrian (PedestrianControl, its default controller) straight towards each trajectory vertex in turn at the speed its speed actions set, reading no vertex times, and heads for the next once within 1 m of one; with no vertex left, or none given, it walks straight ahead the way it faces',
     source:
