@@ -1,36 +1,23 @@
 // Formatter benchmark (prints figures, asserts nothing): Format Document and Format Selection on a
 // generated 15,000-line scenario through the built language server, and `format --check` as a process.
 import { spawn, spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import * as esbuild from 'esbuild';
+import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { fileURLToPath } from 'node:url';
 import { createProtocolConnection, StreamMessageReader, StreamMessageWriter } from 'vscode-languageserver/node';
+import { cpuMs, now, startServer, stats, uriOf } from './lspSession.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const server = path.join(root, 'dist', 'server.js');
+// BENCH_SERVER: another build's server.js, to measure two builds side by side in the same minutes.
+const server = process.env.BENCH_SERVER ?? path.join(root, 'dist', 'server.js');
 const cli = path.join(root, 'dist', 'cli.js');
 const samples = Number(process.env.BENCH_SAMPLES ?? 30);
-const now = () => Number(process.hrtime.bigint()) / 1e6;
 
 if (!existsSync(server) || !existsSync(cli)) {
   console.error('dist/ is missing: run npm run build first');
   process.exit(1);
-}
-
-/**
- * CPU time (user + system) a process has used, in ms: on a loaded machine wall time says little.
- * @param {number | undefined} pid
- */
-function cpuMs(pid) {
-  const fields = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
-  return ((Number(fields[11]) + Number(fields[12])) * 1000) / 100;
-}
-
-/** @param {number[]} times */
-function stats(times) {
-  const sorted = [...times].sort((a, b) => a - b);
-  return { median: sorted[Math.floor(sorted.length / 2)], p95: sorted[Math.min(sorted.length - 1, Math.ceil(sorted.length * 0.95) - 1)] };
 }
 
 /**
@@ -72,36 +59,85 @@ function messyScenario(lines) {
 }
 
 const folder = mkdtempSync(path.join(tmpdir(), 'm2s-format-bench-'));
+// The extension splits a reply of one edit into an edit per changed space before VS Code gets it (client/src/formatEdits.ts).
+const split = /** @type {typeof import('../common/src/whitespaceEdits')} */ (
+  await import(
+    `data:text/javascript;base64,${Buffer.from(
+      (
+        await esbuild.build({
+          entryPoints: [path.join(root, 'common', 'src', 'whitespaceEdits.ts')],
+          bundle: true,
+          format: 'esm',
+          write: false,
+          logLevel: 'warning',
+        })
+      ).outputFiles[0].text,
+    ).toString('base64')}`
+  )
+);
 const file = path.join(folder, 'big.xosc');
 const text = messyScenario(15_000);
 writeFileSync(file, text);
 const inputLines = text.split('\n').length;
 
-const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
-const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
-// Every other notification is dropped: vscode-jsonrpc's catch-all handler, which ProtocolConnection's type leaves out.
-/** @type {import('vscode-jsonrpc').MessageConnection} */ (/** @type {unknown} */ (connection)).onNotification(() => {});
-connection.onRequest('workspace/configuration', (params) => params.items.map(() => ({})));
-connection.onRequest('window/workDoneProgress/create', () => null);
-connection.onRequest('client/registerCapability', () => null);
-connection.listen();
-await connection.sendRequest('initialize', { processId: process.pid, rootUri: pathToFileURL(folder).href, capabilities: {} });
-await connection.sendNotification('initialized', {});
-const uri = pathToFileURL(file).href;
+// The server starts as the extension starts it (bench/lspSession.mjs: its node flags, a workspace folder indexed
+// first); BENCH_FORMAT_BARE=1 starts it as this bench did until 2026-11-29, a bare `node server.js` without the flags.
+const bare = process.env.BENCH_FORMAT_BARE === '1';
+/** @returns {Promise<{ child: import('node:child_process').ChildProcess, connection: import('vscode-languageserver-protocol').ProtocolConnection, stop: () => Promise<void> }>} */
+async function start() {
+  if (!bare) return startServer(server, folder);
+  const child = spawn(process.execPath, [server, '--stdio'], { stdio: ['pipe', 'pipe', 'inherit'] });
+  const connection = createProtocolConnection(new StreamMessageReader(child.stdout), new StreamMessageWriter(child.stdin));
+  // Every other notification is dropped: vscode-jsonrpc's catch-all handler, which ProtocolConnection's type leaves out.
+  /** @type {import('vscode-jsonrpc').MessageConnection} */ (/** @type {unknown} */ (connection)).onNotification(() => {});
+  connection.onRequest('workspace/configuration', (params) => params.items.map(() => ({})));
+  connection.onRequest('window/workDoneProgress/create', () => null);
+  connection.onRequest('client/registerCapability', () => null);
+  connection.listen();
+  await connection.sendRequest('initialize', { processId: process.pid, rootUri: uriOf(folder), capabilities: {} });
+  await connection.sendNotification('initialized', {});
+  const stop = async () => {
+    await connection.sendRequest('shutdown');
+    await connection.sendNotification('exit');
+    connection.dispose();
+  };
+  return { child, connection, stop };
+}
+const { child, connection, stop } = await start();
+const uri = uriOf(file);
 await connection.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'xosc', version: 1, text } });
 
 const options = { tabSize: 2, insertSpaces: true };
 const documentTimes = [];
+const splitTimes = [];
+let splitCount = 0;
+/** @type {import('vscode-languageserver-protocol').TextEdit[]} */
 let edits = [];
 const cpuBefore = cpuMs(child.pid);
 for (let i = 0; i < samples; i++) {
   const started = now();
   edits = await connection.sendRequest('textDocument/formatting', { textDocument: { uri }, options });
   documentTimes.push(now() - started);
+  if (edits.length === 1) {
+    // As the client does: the edit's original text, split by white space (its positions are a binary search each).
+    const splitStarted = now();
+    const lineStarts = lineStartsOf(text);
+    const range = edits[0].range;
+    const from = lineStarts[range.start.line] + range.start.character;
+    splitCount = split.whitespaceEdits(text.slice(from, lineStarts[range.end.line] + range.end.character), edits[0].newText)?.length ?? -1;
+    splitTimes.push(now() - splitStarted);
+  }
 }
 const serverCpu = (cpuMs(child.pid) - cpuBefore) / samples;
+const replyBytes = Buffer.byteLength(JSON.stringify(edits));
+/** @param {string} text */
+function lineStartsOf(text) {
+  const starts = [0];
+  for (let at = text.indexOf('\n'); at !== -1; at = text.indexOf('\n', at + 1)) starts.push(at + 1);
+  return starts;
+}
 // The common case, format on save of a file already formatted: the same scenario after one pass.
-const formattedUri = pathToFileURL(path.join(folder, 'formatted.xosc')).href;
+const formattedUri = uriOf(path.join(folder, 'formatted.xosc'));
 let formatted = text;
 {
   const lines = formatted.split('\n');
@@ -140,9 +176,7 @@ for (let i = 0; i < samples; i++) {
   });
   rangeTimes.push(now() - started);
 }
-await connection.sendRequest('shutdown');
-await connection.sendNotification('exit');
-connection.dispose();
+await stop();
 
 const cliTimes = [];
 for (let i = 0; i < Math.max(5, Math.floor(samples / 3)); i++) {
@@ -157,10 +191,16 @@ rmSync(folder, { recursive: true, force: true });
 const fmt = (n) => n.toFixed(1).padStart(7);
 const documentStats = stats(documentTimes);
 console.log(
-  `formatter benchmark (${samples} runs; a ${inputLines.toLocaleString('en-US')}-line scenario at column 0, ${edits.length.toLocaleString('en-US')} edits)`,
+  `formatter benchmark (${samples} runs; a ${inputLines.toLocaleString('en-US')}-line scenario at column 0, ${edits.length.toLocaleString('en-US')} edits, ${replyBytes.toLocaleString('en-US')} bytes of JSON; server started ${bare ? "bare, without the extension's node flags" : 'as the extension starts it'})`,
 );
 console.log('                                              median ms   p95 ms');
 console.log(`  Format Document over LSP (request to reply)   ${fmt(documentStats.median)}  ${fmt(documentStats.p95)}`);
+if (splitTimes.length > 0) {
+  const splitStats = stats(splitTimes);
+  console.log(
+    `    the client's split of the one edit into ${splitCount.toLocaleString('en-US')} edits  ${fmt(splitStats.median)}  ${fmt(splitStats.p95)}`,
+  );
+}
 const clean = stats(cleanTimes);
 console.log(`  Format Document, already formatted (no edits)  ${fmt(clean.median)}  ${fmt(clean.p95)}`);
 const range = stats(rangeTimes);

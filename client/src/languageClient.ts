@@ -46,6 +46,7 @@ import {
   type LibraryListingResult,
 } from '../../common/src/libraryProtocol';
 import { resolveScenarioPaths } from './configuration';
+import { formattingMiddleware } from './formatEdits';
 import { whileRunning } from './requestGate';
 import type { ServerLifecycle } from './serverLifecycle';
 
@@ -86,6 +87,7 @@ export function createLanguageClient(
     },
     middleware: {
       ...whileRunning(() => client.isRunning() && !closing()),
+      ...formattingMiddleware,
       // Views that show the server's answers (the preview, the structure) ask again once the server has the edit.
       didChange: async (event, next) => {
         await next(event);

@@ -1,6 +1,6 @@
 import { FormattingOptions, TextEdit } from 'vscode-languageserver/node';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { formatXml } from '../core/format';
+import { editorEdits, formatXml } from '../core/format';
 import { parseXml, XmlDocument } from '../core/xml';
 
 /** The edits that format a document (or the lines of `range`); a malformed document gets a message, no edits. */
@@ -16,6 +16,7 @@ export function formattingEdits(
   const xml = parsed && parsed.text === text ? parsed : parseXml(text);
   const result = formatXml(text, { tabSize: options.tabSize, insertSpaces: options.insertSpaces, maxLineWidth }, range, xml);
   if (!result.ok) return { edits: [], refusal: result.message };
-  const ranges = xml.lines.rangesInOrder(result.edits);
-  return { edits: result.edits.map((edit, index) => ({ range: ranges[index], newText: edit.newText })) };
+  const edits = editorEdits(text, result);
+  const ranges = xml.lines.rangesInOrder(edits);
+  return { edits: edits.map((edit, index) => ({ range: ranges[index], newText: edit.newText })) };
 }
