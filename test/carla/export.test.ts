@@ -1665,6 +1665,11 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
       "the route Event's start (a StoryboardElementStateCondition, 4 s delay)",
       '<ByValueCondition><StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="WalkerRoute" state="startTransition"/></ByValueCondition>',
     ],
+    // The route starts on the walker's 5th metre at the 2 m/s a SpeedAction at 0 s sets: at 2.5 s.
+    [
+      'a SimulationTimeCondition at 6 s, after its route started by a distance at 2.5 s',
+      '<ByValueCondition><SimulationTimeCondition value="6" rule="greaterThan"/></ByValueCondition>',
+    ],
   ] as const)
     it(`a pedestrian whose speed changes once its story route has started (${when}): written, its walker walks the trajectory at the new speed in both simulators; ScenarioRunner builds it, esmini runs it as the original (within one step's travel) (issue 26)`, async function () {
       requireEsmini(this);
@@ -1686,7 +1691,7 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
       );
       const verdict = await assertBuilt(result.output, { tree: true });
       assert.deepEqual((verdict.waypoints ?? []).map(([, name]) => name).sort(), ['HeroAcquires', 'WalkerAcquires']);
-      // The walker at 3.5 m/s from its 15th metre or 4 s into its route: one step's travel of the hero, as before, bounds both.
+      // The walker at 3.5 m/s from its 15th metre, 4 s into its route or at 6 s: one step's travel of the hero, as before, bounds each.
       const tracks = await assertMovesAlike(original, result.output, 20, 0.21);
       // It did walk faster: more than the 40 m that 20 s at 2 m/s would take it.
       const walker = tracks.get('Walker') ?? [];
@@ -1702,6 +1707,12 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
       refusal,
       /the speed of 'Walker' until the action starts is not certain .*so where it is then is not known; a walker's SpeedAction to an absolute speed that starts only once its route has .* is kept: both simulators walk the trajectory at the speed it sets \(.*pedestrian_control\.py:57-70\)/,
     );
+    // At 2 s, before the route starts on the walker's 5th metre at 2 m/s (2.5 s): its speed until then is not certain.
+    const early = await walkerRouteRefusal(
+      path.join(out, 'early-time.xosc'),
+      walkerChangingSpeed(3.5, '<ByValueCondition><SimulationTimeCondition value="2" rule="greaterThan"/></ByValueCondition>'),
+    );
+    assert.match(early, /the speed of 'Walker' until the action starts is not certain/);
     // At 6 m, past the route's 5 m but before the 7 m its 1 s delay at 2 m/s makes: the SpeedAction named.
     const delayed = walkerChangingSpeed(3.5, walkerTraveled(6)).replace(
       'name="WalkerRouteStarts" delay="0"',

@@ -28,7 +28,7 @@ import {
   startsAtZero,
   timeAt,
 } from './routeSpeedProfile';
-import { actorsOf, constantSpeedOf, mayActOn, scenarioObjectOf, storySpeedOf } from './scenarioTree';
+import { actorsOf, constantSpeedOf, mayActOn, scenarioObjectOf, startSpeedOf, storySpeedOf } from './scenarioTree';
 import { ancestor, attr, child, childrenNamed, fourDecimals, makeNode, named, Node, numberAttr } from './tree';
 
 /** The longest straight segment between two vertices: its sagitta on a 10 m radius (a tight junction turn) is 1.25 cm. */
@@ -572,10 +572,21 @@ function storyRouteStart(tree: Node, action: Node, actor: string, walker: boolea
   // A walker walks the trajectory at whatever speed it has (both simulators): SpeedActions that start only once the route has are left out.
   const event = ancestor(action, 'Event');
   const route = { action, event, act: ancestor(action, 'Act'), actor };
-  const routeTime = routeStartTime(action);
-  // First with the least distance the route can start at; then checked at the distance the speed gives.
-  const first = laterSpeedActions(tree, route, { along: routeTraveled(action) ?? 0, time: routeTime });
-  const starts = storyRouteStartAt(tree, action, actor, new Set([action, ...first]), true);
+  const timed = routeStartTime(action);
+  // A route started by a distance starts at a known time where the speed the walker walks there at is set at a known time.
+  const byDistance = timed === undefined ? distanceStartTime(tree, action, actor) : undefined;
+  const attempt = (routeTime: number | undefined): { first: Node[]; starts: RouteStart | string } => {
+    // First with the least distance the route can start at; then checked at the distance the speed gives.
+    const first = laterSpeedActions(tree, route, { along: routeTraveled(action) ?? 0, time: routeTime });
+    return { first, starts: storyRouteStartAt(tree, action, actor, new Set([action, ...first]), true) };
+  };
+  let routeTime = timed ?? byDistance?.time;
+  let { first, starts } = attempt(routeTime);
+  // Another speed than the one the time was computed at: that time does not hold, and no SpeedAction counts as later by its time.
+  if (byDistance && (typeof starts === 'string' || Math.abs(starts.speed - byDistance.speed) > 1e-9)) {
+    routeTime = undefined;
+    ({ first, starts } = attempt(routeTime));
+  }
   if (typeof starts === 'string' || first.length === 0) return starts;
   const later = laterSpeedActions(tree, route, { along: starts.along, time: routeTime });
   if (later.length !== first.length)
@@ -588,6 +599,34 @@ function storyRouteStart(tree: Node, action: Node, actor: string, walker: boolea
   return { ...starts, later };
 }
 
+/**
+ * When a walker's route started by its own TraveledDistanceCondition starts, from the run's start, and the speed that time
+ * is computed at: its Init's, walked from the start; or, standing until then, that of the earliest step SpeedAction of the
+ * route's Act that one SimulationTimeCondition starts. The route's Act starts at the run's start, so ScenarioRunner counts
+ * its conditions from there too (CARLA_FACTS.conditionsCountFromTheirStart). storyRouteStart checks the speed it finds.
+ */
+function distanceStartTime(tree: Node, action: Node, actor: string): { time: number; speed: number } | undefined {
+  const traveled = routeTraveled(action);
+  const act = ancestor(action, 'Act');
+  const event = ancestor(action, 'Event');
+  const condition = event ? named(child(event, 'StartTrigger') ?? event, 'Condition')[0] : undefined;
+  const delay = condition ? numberAttr(condition, 'delay', 0) : NaN;
+  if (traveled === undefined || !(traveled >= 0) || !act || !startsAtZero(act) || !(delay >= 0)) return undefined;
+  const initial = startSpeedOf(tree, actor);
+  if (initial !== undefined) return initial > 0 ? { time: traveled / initial + delay, speed: initial } : undefined;
+  let earliest: { at: number; speed: number } | undefined;
+  for (const speedAction of named(act, 'SpeedAction')) {
+    const target = named(speedAction, 'AbsoluteTargetSpeed')[0];
+    const dynamics = named(speedAction, 'SpeedActionDynamics')[0];
+    const at = routeStartTime(speedAction);
+    const speed = target ? numberAttr(target, 'value', NaN) : NaN;
+    if (!mayActOn(speedAction, actor) || at === undefined || !(speed > 0) || !dynamics || attr(dynamics, 'dynamicsShape') !== 'step')
+      continue;
+    if (!earliest || at < earliest.at) earliest = { at, speed };
+  }
+  return earliest ? { time: earliest.at + traveled / earliest.speed + delay, speed: earliest.speed } : undefined;
+}
+
 /** What a refusal says of a route whose start is known only as the scenario runs. */
 const PLACE_UNKNOWN = 'is known only as the scenario runs';
 
@@ -595,7 +634,7 @@ const PLACE_UNKNOWN = 'is known only as the scenario runs';
 const NO_TRAJECTORY_FROM_ANYWHERE = `the one 1.0 action that ScenarioRunner 0.9.16 builds with waypoints, a FollowTrajectoryAction, takes its vertices as written, placed once when it starts, and its vehicle controller drives to each by its time counted from then: ${SR_ATOMICS}:796-803, ${SR_PARSER}:1509-1513, ${CARLA_FACTS.trajectoryTimesSetSpeed.source.split(',')[0]}`;
 
 /** What a walker's refusal for its speed adds: the speed changes it walks in both simulators. */
-const WALKER_LATER = `a walker's SpeedAction to an absolute speed that starts only once its route has (on the route's Action or Event state, or in the route's Act on its own TraveledDistanceCondition at or past where the route starts, or a SimulationTimeCondition at or after a time-started route's start) is kept: both simulators walk the trajectory at the speed it sets (${CARLA_FACTS.walkerSpeedChangeOnTrajectory.source})`;
+const WALKER_LATER = `a walker's SpeedAction to an absolute speed that starts only once its route has (on the route's Action or Event state, or in the route's Act on its own TraveledDistanceCondition at or past where the route starts, or a SimulationTimeCondition at or after the route's start, known from its own time or from its distance at a speed set at a known time) is kept: both simulators walk the trajectory at the speed it sets (${CARLA_FACTS.walkerSpeedChangeOnTrajectory.source})`;
 
 /** The states a storyboard element reaches only once it has started. */
 const STARTED_STATES: ReadonlySet<string> = new Set(['startTransition', 'runningState', 'endTransition', 'completeState']);
@@ -608,7 +647,7 @@ function routeTraveled(action: Node): number | undefined {
   return traveled.length === 1 ? numberAttr(traveled[0], 'value', NaN) : undefined;
 }
 
-/** When the route Event starts, from its Act's start, if it starts on one SimulationTimeCondition. */
+/** When an action's Event starts (a route's, a SpeedAction's), from its Act's start, if it starts on one SimulationTimeCondition. */
 function routeStartTime(action: Node): number | undefined {
   const event = ancestor(action, 'Event');
   const trigger = event ? child(event, 'StartTrigger') : undefined;
