@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { LibraryModule, readModule } from '../../server/src/core/library';
-import { entityOffers, newEntityChanges, TextChange, TrafficRules } from '../../server/src/core/libraryEntities';
+import { entityOffers, exampleSpeedDifference, newEntityChanges, TextChange, TrafficRules } from '../../server/src/core/libraryEntities';
 import { insertModuleGroup } from '../../server/src/core/libraryInsert';
 import { newMainScenario } from '../../server/src/core/newScenario';
 import { parseXml } from '../../server/src/core/xml';
@@ -305,6 +305,82 @@ describe('Insert into main: a new entity as the example has it (core/libraryEnti
     assert.deepEqual(composed(45, 7, new Set()).placed, ['-1', '44.5', '8']);
     // A car that enters the lane behind the ego is no member: the lead as if alone.
     assert.deepEqual(composed(5, 7).placed, ['-1', '44.5', '8']);
+  });
+
+  it("a car that enters the ego's lane inserted after slower cars ahead in it moves them behind it, no faster: the places the other order gives", () => {
+    const cutIn = builtIn('cut-in');
+    const entering = new Set(['cut-in']);
+    // Each slower module's example difference to its follower: lead-brake's lead 2 m/s below its ego, slow-target's 4.
+    const slower = new Map(
+      ['lead-brake', 'slow-target'].map((name) => [name, exampleSpeedDifference(builtIn(name).module, builtIn(name).example) ?? NaN]),
+    );
+    assert.deepEqual([...slower.values()], [2, 4]);
+    /** A new main with `first` inserted (its new actor `name`, its Init `s` and speed and its speed key set where given), then a cut-in. */
+    const composed = (
+      first: string,
+      name: string,
+      set: ReadonlyMap<string, number> = slower,
+      at?: { s: string; speed: string },
+      key?: string,
+    ) => {
+      const module = builtIn(first);
+      let text = newMain();
+      const players = { [name]: name, ego: 'Ego' };
+      const car = newEntityChanges(text, module.module, module.example, { [name]: name }, players, undefined, undefined, entering, set);
+      text = applied(text, car.changes);
+      if (at)
+        text = text.replace(
+          new RegExp(`(<Private entityRef="${name}">[\\s\\S]*?s=")[^"]+("[\\s\\S]*?<AbsoluteTargetSpeed value=")[^"]+"`),
+          `$1${at.s}$2${at.speed}"`,
+        );
+      const values = key === undefined ? car.values : { ...car.values, 'AbsoluteTargetSpeed.value': key };
+      const group = insertModuleGroup(text, module.module, { players, values });
+      text = text.slice(0, group.offset) + group.text + text.slice(group.offset);
+      const result = newEntityChanges(
+        text,
+        cutIn.module,
+        cutIn.example,
+        { adversary: 'adversary' },
+        { adversary: 'adversary', ego: 'Ego' },
+        undefined,
+        undefined,
+        entering,
+        set,
+      );
+      const after = applied(text, result.changes);
+      const places = [
+        ...after.matchAll(
+          /<Private entityRef="([^"]+)">[\s\S]*?<LanePosition roadId="0" laneId="(-?\d+)" s="([\d.]+)"[\s\S]*?<AbsoluteTargetSpeed value="([^"]+)"\/>/g,
+        ),
+      ].map((match) => match.slice(1).join(' '));
+      const speedKey = /<ParameterReference key="AbsoluteTargetSpeed.value" value="([^"]+)"\/>/.exec(after)?.[1];
+      return { places, added: result.added, key: speedKey };
+    };
+    // The lead as if alone (34.5 m ahead, 8 m/s: 2 slower than the ego), then the cut-in's car 35 m ahead at 7 m/s: the lead
+    // keeps its 2 m/s to its follower from that car, 5 m/s, as a lead inserted after the cut-in is placed (44.5 m, 5 m/s).
+    const lead = composed('lead-brake', 'lead');
+    assert.deepEqual(lead.places, ['Ego -1 10 $EgoSpeed', 'lead -1 44.5 5', 'adversary -2 45 7']);
+    assert.deepEqual(lead.added, [
+      'adversary (Vehicle, 35 m ahead of Ego, lane -2, 7 m/s (lead moved behind it: 5 m/s, was 8, so that adversary cuts in ahead of it and lead never runs into it))',
+    ]);
+    // Its braking's speed key (0, to a stop) is no speed of its Init: unchanged.
+    assert.equal(lead.key, '0');
+    // A lead further ahead than the cut-in's car: level with it, not ahead.
+    assert.deepEqual(composed('lead-brake', 'lead', slower, { s: '70', speed: '8' }).places[1], 'lead -1 45 5');
+    // A slow target 100 m ahead at 6 m/s (its example: 14 and 10 m/s): level with the car, 3 m/s, as the other order places
+    // it; its speed key (0: standing from the start) is no speed of its Init: unchanged.
+    const target = composed('slow-target', 'target');
+    assert.deepEqual(target.places.slice(1), ['target -1 45 3', 'adversary -2 45 7']);
+    assert.equal(target.key, '0');
+    // Keyed to drive on at its Init speed, the key moves with it, else the group would set the old speed again at once.
+    assert.equal(composed('slow-target', 'target', slower, undefined, '6').key, '3');
+    // Already slower than that, or behind the ego: left where it is.
+    assert.deepEqual(composed('lead-brake', 'lead', slower, { s: '44.5', speed: '1' }).places[1], 'lead -1 44.5 1');
+    assert.deepEqual(composed('lead-brake', 'lead', slower, { s: '5', speed: '8' }).places[1], 'lead -1 5 8');
+    // No module known to drive slower in the lane (a library without the field): the lead as if alone.
+    assert.deepEqual(composed('lead-brake', 'lead', new Map()).places[1], 'lead -1 44.5 8');
+    // Already behind a cut-in's car (as that order places it), a second cut-in leaves it there.
+    assert.deepEqual(composed('lead-brake', 'lead', slower, { s: '44.5', speed: '5' }).places[1], 'lead -1 44.5 5');
   });
 
   it("a doc block's queue field is 'enters' or 'slower'; another value is reported on its line and the module left out", () => {

@@ -58,10 +58,10 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
   const MODULES = ['cut-in', 'lead-brake', 'pedestrian-crossing'];
 
   /** The three modules inserted into `text` as the client does it: a guess where there is one, else the new entity offered. */
-  async function compose(text: string): Promise<{ text: string; asked: LibraryInsertResult['roles'][]; uri: string }> {
+  async function compose(text: string, order = MODULES): Promise<{ text: string; asked: LibraryInsertResult['roles'][]; uri: string }> {
     const uri = await client.open(fileUri(path.join(root, 'main.xosc')), text);
     const asked: LibraryInsertResult['roles'][] = [];
-    for (const module of MODULES) {
+    for (const module of order) {
       const questions = await client.send(LibraryInsertRequest, { uri, module });
       asked.push(questions.roles);
       const players = Object.fromEntries(questions.roles.map((role) => [role.name, role.guess ?? role.newEntity ?? '']));
@@ -172,6 +172,26 @@ describe('language server: Insert into Main adds the entity a role lacks, as the
           `<ManeuverGroup name="${name}" maximumExecutionCount="1">\\s*<Actors selectTriggeringEntities="false">\\s*<EntityRef entityRef="${actor}"/>`,
         ),
       );
+    await behavesAsItsExamples(this, text);
+  });
+
+  it('the lead brake inserted before the cut-in: the cut-in moves the lead behind its car, no faster, the places the other order gives; clean, each behaves as in its example, and no two scripted actors touch', async function () {
+    const { text } = await compose(newMain(), ['lead-brake', 'cut-in', 'pedestrian-crossing']);
+    assert.deepEqual(
+      [
+        ...text.matchAll(
+          /<Private entityRef="([^"]+)">[\s\S]*?<LanePosition roadId="0" laneId="(-?\d+)" s="([\d.]+)"[\s\S]*?<AbsoluteTargetSpeed value="([^"]+)"/g,
+        ),
+      ].map((match) => match.slice(1)),
+      [
+        ['Ego', '-1', '10', '$EgoSpeed'],
+        // As if alone at first (8 m/s, 2 slower than the ego); the cut-in's car then takes it to 5 m/s, 2 slower than that
+        // car (before 30 November 2026 it stayed at 8 m/s, and the cut-in's car cut in onto it at 4.45 s).
+        ['lead', '-1', '44.5', '5'],
+        ['adversary', '-2', '45', '7'],
+        ['pedestrian', '-4', '90', '0'],
+      ],
+    );
     await behavesAsItsExamples(this, text);
   });
 

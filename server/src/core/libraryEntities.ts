@@ -97,24 +97,34 @@ function placementOf(element: XmlElement | undefined): Placement {
   return { lanePosition, speedTarget };
 }
 
-/** An actor of the main that enters its ego's lane ahead of it (a cut-in's car): how far ahead it starts, and how fast. */
+/** An actor of the main that enters its ego's lane ahead of it (a cut-in's car), or drives slower ahead in it: how far ahead it starts, and how fast. */
 interface QueueMember {
   name: string;
   distance: number;
   speed: number;
+  /** Whether it starts in the ego's lane (a LanePosition on its lane, or a RelativeLanePosition of dLane 0). */
+  inLane: boolean;
+  /** Its Init's distance (a LanePosition's s, `sense` per metre ahead, from `base`; a RelativeLanePosition's ds) and speed, where each is a number. */
+  place?: { attribute: XmlAttribute; base: number; sense: number };
+  speedAttribute?: XmlAttribute;
+  /** Its group's ScenarioReference, and the library module it imports. */
+  reference: XmlElement | undefined;
+  module: string;
 }
 
 /**
- * The actors of the main's groups that import a module whose actor enters the lane of `player` ahead of it (`entering`,
- * by name; the group's keys name `player`), placed in its Init ahead of `player`: by a LanePosition on its road (the
- * distance counted as `player` drives, `sense`) or a RelativeLanePosition from it, at a known speed.
+ * The actors of the main's groups that import a module of `modules` (by name: those whose actor enters the lane of
+ * `player` ahead of it, or those whose actor drives slower ahead in it; the group's keys name `player` where `named`), placed in its
+ * Init ahead of `player`: by a LanePosition on its road (the distance counted as `player` drives, `sense`) or a
+ * RelativeLanePosition from it, at a known speed.
  */
 function queueMembers(
   main: ScenarioModel,
   storyboard: XmlElement | undefined,
   player: string,
-  entering: ReadonlySet<string>,
+  modules: { has(name: string): boolean },
   sense: number,
+  named = true,
 ): QueueMember[] {
   const root = main.document.root;
   const playerPosition = placementOf(privateOf(storyboard, player)).lanePosition;
@@ -122,16 +132,21 @@ function queueMembers(
   for (const group of main.groups) {
     const reference = child(group.element, 'ScenarioReference');
     const file = valueOf(reference, 'scenarioFileName') ?? '';
-    if (!file.startsWith(LIBRARY_PREFIX) || !entering.has(file.slice(LIBRARY_PREFIX.length).replace(/\.xosc$/i, ''))) continue;
+    const moduleName = file.slice(LIBRARY_PREFIX.length).replace(/\.xosc$/i, '');
+    if (!file.startsWith(LIBRARY_PREFIX) || !modules.has(moduleName)) continue;
     const values = child(reference, 'ManeuverGroupReference')?.children.map((parameter) => valueOf(parameter, 'value')) ?? [];
     const name = valueOf(child(child(group.element, 'Actors'), 'EntityRef'), 'entityRef');
-    if (!name || !values.includes(player)) continue;
+    // A slower car's group may name no ego (a slow target): its place in the lane of `player` is what counts.
+    if (!name || (named && !values.includes(player))) continue;
     const placed = privateOf(storyboard, name);
     const { lanePosition, speedTarget } = placementOf(placed);
     const relative = placed?.children
       .map((action) => child(child(child(action, 'TeleportAction'), 'Position'), 'RelativeLanePosition'))
       .find((position) => position !== undefined);
     let distance: number | undefined;
+    let inLane = false;
+    let place: QueueMember['place'];
+    const literal = (found: XmlAttribute | undefined) => (found && !found.value.trim().startsWith('$') ? found : undefined);
     if (
       lanePosition &&
       playerPosition &&
@@ -139,11 +154,79 @@ function queueMembers(
     ) {
       const [s, playerS] = [numberIn(root, valueOf(lanePosition, 's')), numberIn(root, valueOf(playerPosition, 's'))];
       if (s !== undefined && playerS !== undefined) distance = sense * (s - playerS);
-    } else if (relative && valueOf(relative, 'entityRef') === player) distance = numberIn(root, valueOf(relative, 'ds'));
+      inLane = numberIn(root, valueOf(lanePosition, 'laneId')) === numberIn(root, valueOf(playerPosition, 'laneId'));
+      const sAttribute = literal(attribute(lanePosition, 's'));
+      if (sAttribute && playerS !== undefined) place = { attribute: sAttribute, base: playerS, sense };
+    } else if (relative && valueOf(relative, 'entityRef') === player) {
+      distance = numberIn(root, valueOf(relative, 'ds'));
+      inLane = (numberIn(root, valueOf(relative, 'dLane')) ?? 0) === 0;
+      const dsAttribute = literal(attribute(relative, 'ds'));
+      if (dsAttribute) place = { attribute: dsAttribute, base: 0, sense: 1 };
+    }
     const speed = numberIn(root, valueOf(speedTarget, 'value'));
-    if (distance !== undefined && distance > 0 && speed !== undefined) members.push({ name, distance, speed });
+    const speedAttribute = literal(speedTarget && attribute(speedTarget, 'value'));
+    if (distance !== undefined && distance > 0 && speed !== undefined)
+      members.push({ name, distance, speed, inLane, place, speedAttribute, reference, module: moduleName });
   }
   return members;
+}
+
+/** The change of an attribute's value in the main's text. */
+function attributeChange(found: XmlAttribute, value: string): TextChange {
+  return { start: found.valueStart, end: found.valueEnd, text: escapeAttributeValue(value, found.quote) };
+}
+
+/**
+ * How much slower than its follower (the example's ego) a module's actor drives in its example main: for a car that drives
+ * slower ahead in the ego's lane, the difference a car entering the lane ahead of it leaves it (lead-brake: 2 m/s).
+ */
+export function exampleSpeedDifference(module: LibraryModule, exampleText: string): number | undefined {
+  const example = parseScenario(exampleText);
+  const storyboard = child(example.document.root, 'Storyboard');
+  const roles = moduleRoles(module);
+  const actor = roles.find((role) => role.actor);
+  const follower = roles.find((role) => !role.actor && privateOf(storyboard, role.name))?.name ?? EGO;
+  const speedOf = (name: string | undefined) =>
+    name === undefined
+      ? undefined
+      : numberIn(example.document.root, valueOf(placementOf(privateOf(storyboard, name)).speedTarget, 'value'));
+  const [own, followed] = [speedOf(actor?.name), speedOf(follower)];
+  return own === undefined || followed === undefined ? undefined : followed - own;
+}
+
+/**
+ * A slower car ahead in the ego's lane (`member`) behind a car that enters the lane `distance` ahead of the ego at
+ * `speed`: no further ahead than it (level at most), and `difference` (its example's to its follower) slower than it, as
+ * a slower car inserted after an entering one is placed; never moved forward or made faster. Its group's speed key that
+ * holds its Init speed moves with it, else the group would set the old speed again at once.
+ */
+function queueBehind(
+  member: QueueMember,
+  player: string,
+  distance: number,
+  speed: number,
+  difference: number,
+): { changes: TextChange[]; said?: string } {
+  const changes: TextChange[] = [];
+  const told: string[] = [];
+  if (member.place && distance < member.distance) {
+    changes.push(attributeChange(member.place.attribute, rounded(member.place.base + member.place.sense * distance)));
+    told.push(`${rounded(distance)} m ahead of ${player}, was ${rounded(member.distance)}`);
+  }
+  const slowed = Math.max(0, Math.min(speed, speed - difference));
+  if (member.speedAttribute && slowed < member.speed) {
+    changes.push(attributeChange(member.speedAttribute, rounded(slowed)));
+    for (const parameter of member.reference?.children.find((candidate) => candidate.name === 'ManeuverGroupReference')?.children ?? [])
+      if (
+        /(^|\.)AbsoluteTargetSpeed\.value$/.test(valueOf(parameter, 'key') ?? '') &&
+        numberIn(undefined, valueOf(parameter, 'value')) === member.speed
+      ) {
+        const value = attribute(parameter, 'value');
+        if (value) changes.push(attributeChange(value, rounded(slowed)));
+      }
+    told.push(`${rounded(slowed)} m/s, was ${rounded(member.speed)}`);
+  }
+  return { changes, ...(told.length > 0 ? { said: `${member.name} moved behind it: ${told.join(', ')}` } : {}) };
 }
 
 /** Keys of an offset from a lane's centre line that esmini takes along the road's t, not the entity's left (swerving-lead's, arrive-leave-site's, oncoming-vehicle's). */
@@ -297,6 +380,7 @@ export function newEntityChanges(
   files?: { main: string; example: string },
   rules?: TrafficRules,
   entering?: ReadonlySet<string>,
+  slower?: ReadonlyMap<string, number>,
 ): NewEntities {
   const result: NewEntities = { changes: [], values: {}, added: [] };
   const roles = moduleRoles(module).filter((role) => create[role.name] !== undefined);
@@ -350,20 +434,20 @@ export function newEntityChanges(
   // scripted car neither brakes nor steers for another, so one ahead that slows down would be run into (docs/library.md).
   const mainReferencePosition = reference && placementOf(privateOf(storyboard, reference.player)).lanePosition;
   const referenceLane = numberIn(root, valueOf(mainReferencePosition, 'laneId'));
+  const sense = referenceLane === undefined ? 1 : drivingSense(referenceLane, frame?.mainLeftHand ?? false);
   const members =
     module.queue === 'slower' && reference && entering && entering.size > 0
-      ? queueMembers(
-          main,
-          storyboard,
-          reference.player,
-          entering,
-          referenceLane === undefined ? 1 : drivingSense(referenceLane, frame?.mainLeftHand ?? false),
-        )
+      ? queueMembers(main, storyboard, reference.player, entering, sense)
       : [];
   const nearest = members.reduce<QueueMember | undefined>(
     (found, member) => (found && found.distance <= member.distance ? found : member),
     undefined,
   );
+  // The other order: a car that enters the lane inserted after slower cars in it ahead of the same ego moves them behind it.
+  const slowerAhead =
+    module.queue === 'enters' && reference && slower && slower.size > 0
+      ? queueMembers(main, storyboard, reference.player, slower, sense, false).filter((member) => member.inLane)
+      : [];
   for (const role of roles) {
     const name = create[role.name];
     if (!/\S/.test(name)) throw new Error(`the new entity for '${role.name}' has no name`);
@@ -394,6 +478,8 @@ export function newEntityChanges(
     if (entityRef) replacements.push({ attribute: entityRef, value: name });
     const own = placementOf(placed);
     let where = 'placed as in the example';
+    /** How far ahead of the reference player the new entity starts, where it is placed relative to it. */
+    let placedDistance: number | undefined;
     if (reference) {
       const exampleReference = placementOf(privateOf(exampleStoryboard, reference.name));
       const player = reference.player;
@@ -421,6 +507,7 @@ export function newEntityChanges(
         // Behind the nearest car that enters the lane (level with it at most), as it cuts in ahead of this one.
         const queued = role.actor && nearest !== undefined && dLane === 0 && ownS - refS > nearest.distance;
         const distance = queued && nearest ? nearest.distance : ownS - refS;
+        placedDistance = distance;
         if (!mainPosition || mainLane === undefined || mainS === undefined || mainRoad === undefined) {
           // The ego stands where its route, world or road position puts it: the entity is placed relative to it, in
           // the lanes as counted from the ego's (right-hand side, as the example's), ds along the road.
@@ -500,6 +587,18 @@ export function newEntityChanges(
               result.values[parameter.key] === undefined
             )
               result.values[parameter.key] = speed;
+        if (role.actor && placedDistance !== undefined && placedDistance > 0)
+          for (const member of slowerAhead) {
+            const moved = queueBehind(
+              member,
+              player,
+              placedDistance,
+              Number(speed),
+              slower?.get(member.module) ?? mainSpeed - member.speed,
+            );
+            result.changes.push(...moved.changes);
+            if (moved.said) where += ` (${moved.said}, so that ${name} cuts in ahead of it and ${member.name} never runs into it)`;
+          }
       }
     }
     privates.push(transplant(exampleText, placed, replacements, actionsIndent + unit, unit));

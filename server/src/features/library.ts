@@ -13,7 +13,7 @@ import {
 } from '../../../common/src/libraryProtocol';
 import { decodeScenario } from '../core/encoding';
 import { findModule, LibraryModule, listLibraries } from '../core/library';
-import { entityOffers, newEntityChanges, TrafficRules } from '../core/libraryEntities';
+import { entityOffers, exampleSpeedDifference, newEntityChanges, TrafficRules } from '../core/libraryEntities';
 import { parseScenario } from '../core/model';
 import { Evaluator } from '../core/semantics/evaluator';
 import { semanticModelOf } from '../core/semantics/model';
@@ -129,6 +129,14 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
   const create = params.create ?? [];
   if (!Array.isArray(create) || create.some((role) => typeof role !== 'string' || !moduleRolesOf.some((known) => known.name === role)))
     throw invalidParams(`create: the names of roles of ${module.name} (${moduleRolesOf.map((role) => role.name).join(', ')})`);
+  // A car that enters the lane moves the slower cars ahead of the ego behind it, each its example's difference slower.
+  const slower = new Map<string, number>();
+  if (module.queue === 'enters')
+    for (const candidate of listing.modules)
+      if (candidate.queue === 'slower' && candidate.example) {
+        const difference = exampleSpeedDifference(candidate, await readText(candidate.example));
+        if (difference !== undefined) slower.set(candidate.name, difference);
+      }
   let inserted;
   let entities;
   try {
@@ -149,6 +157,7 @@ export async function libraryInsert(workspace: Workspace, params: LibraryInsertP
       mainFile && module.example ? { main: mainFile, example: module.example } : undefined,
       rules,
       new Set(listing.modules.filter((candidate) => candidate.queue === 'enters').map((candidate) => candidate.name)),
+      slower,
     );
     const at = position ? lines.offsetAt(position) : undefined;
     inserted = insertModuleGroup(text, module, { act: params.act, at, players, values: entities.values });
