@@ -66,3 +66,20 @@ export function whitespaceEdits(original: string, changed: string): OffsetEdit[]
     }
   }
 }
+
+/**
+ * A format's reply of one edit split into an edit per changed run of white space (`whitespaceEdits`), positions from
+ * `document`; any other reply (several edits, or a change of other characters) as it came.
+ */
+export function splitFormatReply<P, R extends { start: P; end: P }, E extends { range: R; newText: string }>(
+  document: { getText(range: R): string; offsetAt(position: P): number; positionAt(offset: number): P },
+  edits: E[] | null | undefined,
+  make: (start: P, end: P, newText: string) => E,
+): E[] | null | undefined {
+  if (!edits || edits.length !== 1) return edits;
+  const [edit] = edits;
+  const changes = whitespaceEdits(document.getText(edit.range), edit.newText);
+  if (!changes) return edits;
+  const base = document.offsetAt(edit.range.start);
+  return changes.map((change) => make(document.positionAt(base + change.start), document.positionAt(base + change.end), change.newText));
+}

@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { whitespaceEdits } from '../../common/src/whitespaceEdits';
+import { splitFormatReply, whitespaceEdits } from '../../common/src/whitespaceEdits';
 import { detectIndentation, editorEdits, FormatOptions, formatXml, SEPARATE_EDITS_UP_TO } from '../../server/src/core/format';
 import { formattingEdits } from '../../server/src/features/formatting';
 import { repoRoot, sharedDir } from '../support/paths';
@@ -55,17 +55,16 @@ function checkReply(name: string, text: string, options: FormatOptions, range?: 
   assert.equal(applyTextEditsAsSpecified(text, edits), formatted.text, `${name}: the editor's text is not the formatter's`);
   // Each change cut alone: what the editor gets as separate edits, or splits the one edit into past the limit.
   const separate = formatted.edits.flatMap((edit) => editorEdits(text, { edits: [edit], text: '' }));
+  // What the extension hands VS Code (client/src/formatEdits.ts): the separate edits, however the server sent them.
+  const split = splitFormatReply(document, edits, (start, end, newText) => ({ range: { start, end }, newText })) ?? [];
+  assert.equal(applyTextEditsAsSpecified(text, split), formatted.text, `${name}: the split edits do not read as the formatter's text`);
+  assert.deepEqual(
+    split.map((edit) => ({ start: document.offsetAt(edit.range.start), end: document.offsetAt(edit.range.end), newText: edit.newText })),
+    separate,
+    `${name}: the client's edits differ from the separate edits`,
+  );
   if (separate.length <= SEPARATE_EDITS_UP_TO) assert.equal(edits.length, separate.length, name);
-  else {
-    assert.equal(edits.length, 1, `${name}: ${separate.length} changes`);
-    const start = document.offsetAt(edits[0].range.start);
-    const split = whitespaceEdits(document.getText(edits[0].range), edits[0].newText)?.map((edit) => ({
-      ...edit,
-      start: edit.start + start,
-      end: edit.end + start,
-    }));
-    assert.deepEqual(split, separate, `${name}: the client's split differs from the separate edits`);
-  }
+  else assert.equal(edits.length, 1, `${name}: ${separate.length} changes`);
   if (!range) {
     const again = formattingEdits(TextDocument.create('file:///again.xosc', 'xosc', 1, formatted.text), editor, options.maxLineWidth);
     assert.deepEqual(again.edits, [], `${name}: an already formatted file got edits`);
@@ -116,6 +115,16 @@ describe('Format Document and Format Selection: the edits an editor applies', ()
       { start: 6, end: 7, newText: '' },
     ]);
     assert.deepEqual(whitespaceEdits('<A/>', '<A/>'), []);
+    // A reply the client does not split: several edits, or one that changes more than white space.
+    const document = TextDocument.create('file:///c.xosc', 'xosc', 1, '<A>\n<B/>\n</A>');
+    const make = () => assert.fail('split');
+    const several = [
+      { range: { start: { line: 1, character: 0 }, end: { line: 1, character: 0 } }, newText: '  ' },
+      { range: { start: { line: 2, character: 0 }, end: { line: 2, character: 0 } }, newText: '' },
+    ];
+    assert.equal(splitFormatReply(document, several, make), several);
+    const other = [{ range: { start: { line: 1, character: 1 }, end: { line: 1, character: 2 } }, newText: 'C' }];
+    assert.equal(splitFormatReply(document, other, make), other);
     for (const [before, after] of [
       ['<A/>', '<B/>'],
       ['<A/>', '<A/>x'],
