@@ -1468,6 +1468,23 @@ describe('export --target carla, story routes under 0.9.16 written as trajectori
     );
   });
 
+  it("a story route whose end a condition waits for: its trajectory is not written on past the route's end (that would delay the condition), and the report names where ScenarioRunner then raises (issue 26)", async () => {
+    const watching = STILL_STORY.replace('name="Still"', 'name="Watch"').replace(
+      '<SimulationTimeCondition value="0" rule="greaterThan"/>',
+      '<StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="EgoRoute" state="endTransition"/>',
+    );
+    const text = storyRoutesScenario('time').replace('</Story>', `</Story>\n    ${watching}`);
+    assert.match(text, /storyboardElementRef="EgoRoute" state="endTransition"/);
+    const { mapped } = await exportedStoryRoutes(path.join(out, 'routes.xosc'), text);
+    assert.match(
+      mapped[0].what,
+      new RegExp(
+        `but ScenarioRunner raises IndexError .*; the trajectory is not written on past the route's end, since the condition at routes\\.xosc:${lineHolding(text, 'storyboardElementRef="EgoRoute"')} waits for the route's action to end`,
+      ),
+    );
+    assert.doesNotMatch(mapped[1].what, /is not written on past the route's end/);
+  });
+
   it("a story route whose start is known only as the scenario runs: refused at the action's line, naming why (issue 26)", async () => {
     const timed = storyRoutesScenario('time');
     // Another trigger: where the actor is when another element ends is not known before the run.

@@ -239,7 +239,7 @@ export function routeTrajectory(tree: Node, action: Node, source: RouteRoadSourc
   const routeVertices = driven.length;
   const past = walker
     ? undefined
-    : pastRouteEnd(tree, { speed, along, profile, startTime, known: starts.startTime !== undefined }, routeLength);
+    : pastRouteEnd(tree, action, { speed, along, profile, startTime, known: starts.startTime !== undefined }, routeLength);
   if (past?.length) {
     const last = stretches[stretches.length - 1];
     const direction = last.to !== last.from ? (last.to > last.from ? 1 : -1) : sampling.alongS ? 1 : -1;
@@ -382,6 +382,8 @@ interface PastEnd {
   stop: number | undefined;
   /** Metres past the route's end to the point the vehicle reaches a second after the run stops (0: the run stops first). */
   length: number;
+  /** A condition that waits for the route action (or an element it ends) to end, which going on past the route would delay. */
+  waiting?: Node;
   onwards?: LaneOnwards;
 }
 
@@ -394,16 +396,44 @@ const PAST_STOP_SECONDS = 1;
  */
 function pastRouteEnd(
   tree: Node,
+  action: Node,
   drive: { speed: number; along: number; profile: SpeedProfile | undefined; startTime: number; known: boolean },
   routeLength: number,
 ): PastEnd {
   const stop = runStopTime(tree);
-  if (stop === undefined) return { stop, length: 0 };
+  const waiting = endWaitedFor(tree, action);
+  if (stop === undefined || waiting) return { stop, length: 0, waiting };
   const until = stop + PAST_STOP_SECONDS;
   const beyond = drive.profile
     ? distanceAt(drive.profile, until) - (drive.along + routeLength)
     : drive.speed * (until - (drive.known ? drive.startTime : 0)) - routeLength;
   return { stop, length: Math.max(0, beyond) };
+}
+
+/** The states in which a storyboard element has ended. */
+const ENDED_STATES: ReadonlySet<string> = new Set(['endTransition', 'completeState', 'stopTransition']);
+
+/** A StoryboardElementStateCondition that waits for the end of the route's Action or of a story element holding it. */
+function endWaitedFor(tree: Node, action: Node): Node | undefined {
+  const ends = new Map<string, string>();
+  for (const [type, element] of [
+    ['action', 'Action'],
+    ['event', 'Event'],
+    ['maneuver', 'Maneuver'],
+    ['maneuverGroup', 'ManeuverGroup'],
+    ['act', 'Act'],
+    ['story', 'Story'],
+  ] as const) {
+    const holding = ancestor(action, element);
+    const name = holding ? attr(holding, 'name') : undefined;
+    if (name !== undefined) ends.set(type, name);
+  }
+  if (ends.size === 0) return undefined;
+  return named(tree, 'StoryboardElementStateCondition').find(
+    (condition) =>
+      ENDED_STATES.has(attr(condition, 'state') ?? '') &&
+      ends.get(attr(condition, 'storyboardElementType') ?? '') === attr(condition, 'storyboardElementRef'),
+  );
 }
 
 /** What the report says of the trajectory past the route's end: how far it goes on, and where ScenarioRunner would raise. */
@@ -417,6 +447,8 @@ function pastEndSummary(
   const lastTime = times.last;
   const fact = CARLA_FACTS.trajectoryEndRaises;
   const raises = `ScenarioRunner ${fact.does} (${fact.source})`;
+  if (past?.waiting)
+    return `past the last one esmini drives it on in its lane, as past a route's end, but ${raises}; the trajectory is not written on past the route's end, since the condition at ${lineOf(past.waiting) || 'a story line'} waits for the route's action to end, so ScenarioRunner ends the run with that error if it lasts past ${fourDecimals(lastTime)} s from the action's start`;
   if (!past || past.stop === undefined)
     return `past the last one esmini drives it on in its lane, as past a route's end, but ${raises}: the run has no stop time the export knows (a Storyboard StopTrigger of one SimulationTimeCondition), so ScenarioRunner ends it with that error if it lasts past ${fourDecimals(lastTime)} s from the action's start`;
   if (past.length === 0 || !past.onwards)
