@@ -4,8 +4,8 @@ import { splitFormatReply } from '../../common/src/whitespaceEdits';
 
 /**
  * Format Document and Format Selection with a reply of one edit split into an edit per changed run of white space:
- * past 1,000 changes the server sends one edit (its JSON a third of the edits' for a 15,000-line file), and VS Code
- * applies an edit over 100,000 characters as it is, moving the cursor, folding and markers inside it to its ends.
+ * past 1,000 changes the server sends one edit (its JSON a third of the edits' for a 15,000-line file), which VS Code
+ * would apply as it is past 100,000 characters (markers inside it moved to its ends); split, it gets the edits it got before.
  */
 export const formattingMiddleware: Middleware = {
   provideDocumentFormattingEdits: async (document, options, token, next) =>
