@@ -517,6 +517,8 @@ describe('export --target carla, round trip in esmini', function () {
     'SpeedActionDynamics/@dynamicsDimension',
     'SpeedActionDynamics/@dynamicsShape',
     'DistanceCondition/@freespace',
+    // Past a vehicle trajectory's last vertex ScenarioRunner raises; the file is as written.
+    'Polyline/Vertex',
     'LaneChangeActionDynamics/@dynamicsShape',
     'LaneChangeActionDynamics/@dynamicsDimension',
     'LaneOffsetActionDynamics/@dynamicsShape',
@@ -2260,8 +2262,49 @@ describe('export --target carla, a trajectory without timing', function () {
         ],
       ],
     );
+    // Past the last vertex ScenarioRunner's controller raises (CARLA_FACTS.trajectoryEndRaises): named on the trajectory.
+    assert.deepEqual(
+      exported.report.losses.filter((loss) => loss.element === 'Polyline/Vertex').map((loss) => [loss.line, loss.what]),
+      [
+        [
+          lineHolding(text, '<Polyline>'),
+          "written as it is; by its times 'Lead' reaches the last vertex 5 s after the action starts, where ScenarioRunner's controller raises and ends the run with an error unless it has stopped by then (it stops at 14 s at the latest)",
+        ],
+      ],
+    );
     await assertMovesAlike(original, exported.output, 8);
     await assertBuilt(exported.output);
+  });
+
+  it("names a vehicle's Init trajectory that ends before the run stops, where ScenarioRunner's controller raises, and not one that ends after (issue 26)", async () => {
+    const vertex = (x: number, time: number): string =>
+      `<Vertex time="${time}"><Position><WorldPosition x="${x}" y="-1.75" h="0"/></Position></Vertex>`;
+    const exportedEnd = async (lastTime: number) => {
+      const follow = `<PrivateAction><RoutingAction><FollowTrajectoryAction>
+                <TrajectoryRef><Trajectory name="Line" closed="false"><Shape><Polyline>${vertex(60, 0)}${vertex(100, lastTime / 2)}${vertex(160, lastTime)}</Polyline></Shape></Trajectory></TrajectoryRef>
+                <TimeReference><Timing domainAbsoluteRelative="relative" scale="1" offset="0"/></TimeReference>
+                <TrajectoryFollowingMode followingMode="position"/>
+              </FollowTrajectoryAction></RoutingAction></PrivateAction>`;
+      const teleport = '<LanePosition roadId="0" laneId="-3" offset="0" s="60"/></Position></TeleportAction></PrivateAction>';
+      const text = leadEventsScenario('', leadEvent('Slow', 5, speedChange('step', 0, 'time', 10))).replace(teleport, teleport + follow);
+      assert.ok(text.includes(follow), 'the Init trajectory was not written into the fixture');
+      const original = path.join(out, `init-${lastTime}.xosc`);
+      fs.writeFileSync(original, text);
+      const exported = await exportFile(original, path.join(out, `init-${lastTime}.carla.xosc`));
+      assert.equal(exported.code, 0, exported.stderr);
+      return exported.report.losses.filter((loss) => loss.element === 'Polyline/Vertex').map((loss) => [loss.line, loss.what]);
+    };
+    // The run stops at 14 s: ending at 10 s, the Lead reaches its last vertex while the run goes on.
+    const text = leadEventsScenario('');
+    assert.match(text, /SimulationTimeCondition value="14"/);
+    const ending = await exportedEnd(10);
+    assert.equal(ending.length, 1, JSON.stringify(ending));
+    assert.match(
+      String(ending[0][1]),
+      /'Lead' reaches the last vertex 10 s after the action starts, where ScenarioRunner's controller raises .* \(it stops at 14 s at the latest\)$/,
+    );
+    // Ending at 20 s, after the run has stopped: nothing to name.
+    assert.deepEqual(await exportedEnd(20), []);
   });
 });
 

@@ -8,6 +8,7 @@ import type { RoadXY } from '../opendrive/geo';
 import { pointAlongRoute } from '../opendrive/route';
 import { CarlaRelease, SR_ATOMICS, SR_CONFIGURATION, SR_PARSER, SR_SCENARIO } from './carlaFacts';
 import { CARLA_FACTS, CARLA_PROFILE } from '../profiles/carla';
+import { runStopTime } from './routeSpeedProfile';
 import { ESMINI_SMALL_NUMBER } from '../profiles/esmini';
 import { breaks } from '../profiles/checks';
 import {
@@ -461,7 +462,28 @@ function trajectories(tree: Node, context: RuleContext): void {
         `1.0 requires a vertex time; ScenarioRunner ${timing ? 'reads the times' : untimedReading(tree, action)} (${SR_PARSER} get_trajectory)`,
       );
     }
+    trajectoryEnd(tree, action, context);
   }
+}
+
+/**
+ * Past a vehicle's trajectory's last vertex ScenarioRunner raises, which ends the run (CARLA_FACTS.trajectoryEndRaises):
+ * named on the trajectory, unless it starts with the run and the run stops by its last vertex's time.
+ */
+function trajectoryEnd(tree: Node, action: Node, context: RuleContext): void {
+  const vehicles = actorsOf(action).filter((actor) => isVehicle(tree, actor));
+  const polyline = named(action, 'Polyline')[0];
+  const last = polyline ? Number(attr(childrenNamed(polyline, 'Vertex').at(-1) ?? polyline, 'time')) : NaN;
+  if (!polyline || vehicles.length === 0 || !Number.isFinite(last)) return;
+  const stop = runStopTime(tree);
+  if (ancestor(action, 'Init') && stop !== undefined && last >= stop) return;
+  const fact = CARLA_FACTS.trajectoryEndRaises;
+  context.sink.approximated(
+    polyline,
+    'Polyline/Vertex',
+    `written as it is; by its times ${vehicles.map((vehicle) => `'${vehicle}'`).join(', ')} ${vehicles.length === 1 ? 'reaches' : 'reach'} the last vertex ${fourDecimals(last)} s after the action starts, where ScenarioRunner's controller raises and ends the run with an error unless it has stopped by then${stop === undefined ? ' (the export knows no stop time)' : ` (it stops at ${fourDecimals(stop)} s at the latest)`}`,
+    `ScenarioRunner ${fact.does} (${fact.source})`,
+  );
 }
 
 /**
