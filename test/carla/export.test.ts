@@ -2305,6 +2305,12 @@ describe('export --target carla, a trajectory without timing', function () {
     );
     // Ending at 20 s, after the run has stopped: nothing to name.
     assert.deepEqual(await exportedEnd(20), []);
+    // Times of 0 (a time already past): the controller drives there at full speed (CARLA_FACTS.trajectoryTimesSetSpeed).
+    const atOnce = await exportedEnd(0);
+    assert.match(
+      String(atOnce[0]?.[1]),
+      /'Lead' reaches the last vertex as fast as the controller drives \(its times are 0\), where ScenarioRunner's controller raises/,
+    );
   });
 });
 

@@ -481,7 +481,7 @@ function trajectoryEnd(tree: Node, action: Node, context: RuleContext): void {
   context.sink.approximated(
     polyline,
     'Polyline/Vertex',
-    `written as it is; by its times ${vehicles.map((vehicle) => `'${vehicle}'`).join(', ')} ${vehicles.length === 1 ? 'reaches' : 'reach'} the last vertex ${fourDecimals(last)} s after the action starts, where ScenarioRunner's controller raises and ends the run with an error unless it has stopped by then${stop === undefined ? ' (the export knows no stop time)' : ` (it stops at ${fourDecimals(stop)} s at the latest)`}`,
+    `written as it is; by its times ${vehicles.map((vehicle) => `'${vehicle}'`).join(', ')} ${vehicles.length === 1 ? 'reaches' : 'reach'} the last vertex ${last > 0 ? `${fourDecimals(last)} s after the action starts` : 'as fast as the controller drives (its times are 0)'}, where ScenarioRunner's controller raises and ends the run with an error unless it has stopped by then${stop === undefined ? ' (the export knows no stop time)' : ` (it stops at ${fourDecimals(stop)} s at the latest)`}`,
     `ScenarioRunner ${fact.does} (${fact.source})`,
   );
 }
