@@ -309,9 +309,9 @@ export function editorEdits(text: string, format: { edits: readonly FormatEdit[]
     return cut;
   }
   // The formatter records only gaps that change, so the first and last of them are changes.
-  const first = cutEdit(text, edits[0].start, edits[0].end, edits[0].newText) ?? edits[0];
-  const last =
-    cutEdit(text, edits[edits.length - 1].start, edits[edits.length - 1].end, edits[edits.length - 1].newText) ?? edits[edits.length - 1];
+  const cut = (edit: FormatEdit): FormatEdit => cutEdit(text, edit.start, edit.end, edit.newText) ?? edit;
+  const first = cut(edits[0]);
+  const last = cut(edits[edits.length - 1]);
   const formatted = format.text;
   return [{ start: first.start, end: last.end, newText: formatted.slice(first.start, formatted.length - (text.length - last.end)) }];
 }

@@ -473,7 +473,8 @@ function trajectories(tree: Node, context: RuleContext): void {
 function trajectoryEnd(tree: Node, action: Node, context: RuleContext): void {
   const vehicles = actorsOf(action).filter((actor) => isVehicle(tree, actor));
   const polyline = named(action, 'Polyline')[0];
-  const last = polyline ? Number(attr(childrenNamed(polyline, 'Vertex').at(-1) ?? polyline, 'time')) : NaN;
+  const lastVertex = polyline ? childrenNamed(polyline, 'Vertex').at(-1) : undefined;
+  const last = lastVertex ? Number(attr(lastVertex, 'time')) : NaN;
   if (!polyline || vehicles.length === 0 || !Number.isFinite(last)) return;
   const stop = runStopTime(tree);
   if (ancestor(action, 'Init') && stop !== undefined && last >= stop) return;
